@@ -1,0 +1,504 @@
+#include "core/config/config.hpp"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "core/config/suggest.hpp"
+#include "core/config/units.hpp"
+#include "core/errors.hpp"
+
+namespace suite::config {
+
+struct State {
+  std::string source;
+  YAML::Node root;
+  std::map<std::string, std::set<std::string>> requested;  // section path -> keys asked for
+  std::set<std::string> free_form;                         // subtrees passed on unchecked
+  std::map<std::string, std::string> overridden;           // key path -> "key=value" argument
+};
+
+namespace {
+
+std::string join_path(const std::string& parent, const std::string& key) {
+  return parent.empty() ? key : parent + "." + key;
+}
+
+std::string one_line(const YAML::Node& n) {
+  if (!n.IsDefined() || n.IsNull()) return "";
+  if (n.IsScalar()) return n.Scalar();
+  YAML::Emitter e;
+  e << YAML::Flow << n;
+  return e.c_str();
+}
+
+// "file:line:col" of a node, or the override that set it.
+std::string location(const State& s, const std::string& path, const YAML::Mark& mark) {
+  if (auto it = s.overridden.find(path); it != s.overridden.end())
+    return fmt::format("command-line override '{}'", it->second);
+  if (mark.is_null()) return s.source;
+  return fmt::format("{}:{}:{}", s.source, mark.line + 1, mark.column + 1);
+}
+
+std::string fmt_g(double v) { return fmt::format("{:g}", v); }
+
+bool parse_double(std::string_view text, double& out, std::size_t& used) {
+  while (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+  if (ec != std::errc()) return false;
+  used = static_cast<std::size_t>(ptr - text.data());
+  return true;
+}
+
+std::string trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return std::string(s);
+}
+
+// yaml-cpp keeps duplicate keys silently; a strict reader rejects them.
+void reject_duplicate_keys(const State& s, const YAML::Node& n, const std::string& path) {
+  if (n.IsMap()) {
+    std::map<std::string, int> seen;
+    for (const auto& kv : n) {
+      const std::string key = kv.first.Scalar();
+      const std::string p = join_path(path, key);
+      if (auto [it, fresh] = seen.emplace(key, kv.first.Mark().line + 1); !fresh) {
+        throw InputError(fmt::format("{}: key '{}' appears twice (first on line {}); keep one of them",
+                                     location(s, p, kv.first.Mark()), p, it->second));
+      }
+      reject_duplicate_keys(s, kv.second, p);
+    }
+  } else if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i)
+      reject_duplicate_keys(s, n[i], fmt::format("{}[{}]", path, i));
+  }
+}
+
+void apply_override(State& s, const std::string& arg) {
+  const auto eq = arg.find('=');
+  const std::string key_path = trim(std::string_view(arg).substr(0, eq));
+  const std::string value = eq == std::string::npos ? "" : trim(std::string_view(arg).substr(eq + 1));
+  auto bad = [&](const std::string& why) {
+    return InputError(fmt::format("command-line override '{}': {}; write it as key.path=value", arg, why));
+  };
+  if (eq == std::string::npos || key_path.empty()) throw bad("it has no '='");
+  if (value.empty()) throw bad("it has no value after '='");
+  std::vector<std::string> segments;
+  for (std::size_t start = 0;;) {
+    const auto dot = key_path.find('.', start);
+    segments.push_back(key_path.substr(start, dot - start));
+    if (segments.back().empty()) throw bad("the key path has an empty part");
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  YAML::Node parsed;
+  try {
+    parsed = YAML::Load(value);
+  } catch (const YAML::Exception& e) {
+    throw bad(fmt::format("the value is not valid YAML ({})", e.msg));
+  }
+  YAML::Node cur = s.root;
+  std::string path;
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const std::string& seg = segments[i];
+    const bool last = i + 1 == segments.size();
+    if (cur.IsSequence()) {
+      std::size_t idx = 0;
+      auto [p, ec] = std::from_chars(seg.data(), seg.data() + seg.size(), idx);
+      if (ec != std::errc() || p != seg.data() + seg.size() || idx >= cur.size())
+        throw bad(fmt::format("'{}' is a list of {} entries; use an index 0..{}", path, cur.size(),
+                              cur.size() == 0 ? 0 : cur.size() - 1));
+      path += fmt::format("[{}]", idx);
+      if (last) {
+        cur[idx] = parsed;
+      } else {
+        YAML::Node next = cur[idx];
+        cur.reset(next);  // rebind; operator= would overwrite the node's contents
+      }
+      continue;
+    }
+    if (!cur.IsMap() && !cur.IsNull())
+      throw bad(fmt::format("'{}' holds a value, not a section", path));
+    path = join_path(path, seg);
+    if (last) {
+      cur[seg] = parsed;
+    } else {
+      YAML::Node next = cur[seg];
+      if (!next.IsDefined() || next.IsNull()) {
+        cur[seg] = YAML::Node(YAML::NodeType::Map);
+        next = cur[seg];
+      }
+      cur.reset(next);
+    }
+  }
+  s.overridden[path] = arg;
+}
+
+std::shared_ptr<State> load(const std::string& text, const std::string& source,
+                            const std::vector<std::string>& overrides) {
+  auto s = std::make_shared<State>();
+  s->source = source;
+  try {
+    s->root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", source, e.mark.line + 1,
+                                 e.mark.column + 1, e.msg));
+  }
+  if (!s->root.IsDefined() || s->root.IsNull()) {
+    s->root = YAML::Node(YAML::NodeType::Map);
+  } else if (!s->root.IsMap()) {
+    throw InputError(fmt::format("{}: the file must be a mapping of keys (key: value lines), not a {}",
+                                 source, s->root.IsSequence() ? "list" : "single value"));
+  }
+  reject_duplicate_keys(*s, s->root, "");
+  for (const auto& o : overrides) apply_override(*s, o);
+  return s;
+}
+
+void check_known(const State& s, const YAML::Node& n, const std::string& path) {
+  if (s.free_form.count(path)) return;
+  if (n.IsMap()) {
+    auto it = s.requested.find(path);
+    const std::set<std::string> none;
+    const std::set<std::string>& asked = it == s.requested.end() ? none : it->second;
+    for (const auto& kv : n) {
+      const std::string key = kv.first.Scalar();
+      const std::string p = join_path(path, key);
+      if (!asked.count(key)) {
+        const std::vector<std::string> valid(asked.begin(), asked.end());
+        std::string msg = fmt::format("{}: unknown key '{}'", location(s, p, kv.first.Mark()), p);
+        if (auto best = closest_match(key, valid)) msg += fmt::format("; did you mean '{}'?", *best);
+        if (valid.empty()) {
+          msg += path.empty() ? "; this file takes no keys here" : fmt::format("; '{}' takes no keys", path);
+        } else {
+          msg += fmt::format(" (valid {}: {})", path.empty() ? "top-level keys" : "keys in '" + path + "'",
+                             join(valid));
+        }
+        throw InputError(msg);
+      }
+      check_known(s, kv.second, p);
+    }
+  } else if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i) check_known(s, n[i], fmt::format("{}[{}]", path, i));
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------- Range
+
+bool Range::contains(double v) const {
+  if (std::isnan(v)) return false;
+  const bool lo = min_open ? v > min : v >= min;
+  const bool hi = max_open ? v < max : v <= max;
+  return lo && hi;
+}
+
+std::string Range::describe() const {
+  const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
+  if (has_min && has_max)
+    return fmt::format("in {}{}, {}{}", min_open ? '(' : '[', fmt_g(min), fmt_g(max), max_open ? ')' : ']');
+  if (has_min) return fmt::format("{} {}", min_open ? ">" : ">=", fmt_g(min));
+  if (has_max) return fmt::format("{} {}", max_open ? "<" : "<=", fmt_g(max));
+  return "a finite number";
+}
+
+// -------------------------------------------------------------------------------------- Section
+
+Section::Section(std::shared_ptr<State> state, std::shared_ptr<YAML::Node> node, std::string path)
+    : state_(std::move(state)), node_(std::move(node)), path_(std::move(path)) {}
+
+std::string Section::child_path(const std::string& key) const { return join_path(path_, key); }
+
+YAML::Node Section::child(const std::string& key) const {
+  state_->requested[path_].insert(key);
+  const YAML::Node& self = *node_;
+  return self[key];
+}
+
+void Section::fail_value(const std::string& key, const std::string& problem) const {
+  const std::string p = child_path(key);
+  const YAML::Node n = static_cast<const YAML::Node&>(*node_)[key];
+  if (!n.IsDefined()) {
+    throw InputError(fmt::format("{}: {}", location(*state_, path_, node_->Mark()), problem));
+  }
+  throw InputError(fmt::format("{}: key '{}' = '{}': {}", location(*state_, p, n.Mark()), p,
+                               one_line(n), problem));
+}
+
+bool Section::has(const std::string& key) const {
+  const YAML::Node n = child(key);
+  return n.IsDefined() && !n.IsNull();
+}
+
+std::vector<std::string> Section::keys() const {
+  std::vector<std::string> out;
+  for (const auto& kv : *node_) out.push_back(kv.first.Scalar());
+  return out;
+}
+
+void Section::store_default(const std::string& key, const YAML::Node& value) const {
+  (*node_)[key] = value;
+}
+
+namespace {
+[[noreturn]] void missing(const State& s, const std::string& section_path, const YAML::Mark& mark,
+                          const std::string& key, const std::string& what) {
+  const std::string where = section_path.empty() ? s.source : location(s, section_path, mark);
+  throw InputError(fmt::format("{}: missing required key '{}' ({})", where,
+                               join_path(section_path, key), what));
+}
+}  // namespace
+
+Section Section::section(const std::string& key) const {
+  const YAML::Node n = child(key);
+  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, node_->Mark(), key, "a section of keys");
+  if (!n.IsMap()) fail_value(key, "expected a section (indented key: value lines)");
+  return Section(state_, std::make_shared<YAML::Node>(n), child_path(key));
+}
+
+std::optional<Section> Section::optional_section(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return section(key);
+}
+
+std::vector<Section> Section::sections(const std::string& key) const {
+  const YAML::Node n = child(key);
+  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, node_->Mark(), key, "a list of sections");
+  if (!n.IsSequence()) fail_value(key, "expected a list of sections ('- key: value' entries)");
+  std::vector<Section> out;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string p = fmt::format("{}[{}]", child_path(key), i);
+    if (!n[i].IsMap())
+      throw InputError(fmt::format("{}: entry '{}' must be a section of keys", location(*state_, p, n[i].Mark()), p));
+    out.push_back(Section(state_, std::make_shared<YAML::Node>(n[i]), p));
+  }
+  return out;
+}
+
+template <class T>
+T Section::convert(const std::string& key, const YAML::Node& n) const {
+  if constexpr (std::is_same_v<T, double>) {
+    double v = 0;
+    std::size_t used = 0;
+    const std::string text = n.IsScalar() ? n.Scalar() : "";
+    if (!n.IsScalar() || !parse_double(text, v, used) || used != text.size())
+      fail_value(key, "expected a number");
+    if (!std::isfinite(v)) fail_value(key, "expected a finite number");
+    return v;
+  } else if constexpr (std::is_same_v<T, long long> || std::is_same_v<T, int>) {
+    T v = 0;
+    const std::string text = n.IsScalar() ? n.Scalar() : "";
+    auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (!n.IsScalar() || ec != std::errc() || p != text.data() + text.size())
+      fail_value(key, "expected a whole number");
+    return v;
+  } else if constexpr (std::is_same_v<T, bool>) {
+    bool v = false;
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v)) fail_value(key, "expected true or false");
+    return v;
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    if (!n.IsScalar()) fail_value(key, "expected a single value (text)");
+    return n.Scalar();
+  } else {
+    using E = typename T::value_type;
+    if (!n.IsSequence()) fail_value(key, "expected a list, e.g. [1, 2, 3]");
+    T out;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      try {
+        out.push_back(convert<E>(key, n[i]));
+      } catch (const InputError&) {
+        fail_value(key, fmt::format("entry {} ('{}') has the wrong type", i, one_line(n[i])));
+      }
+    }
+    return out;
+  }
+}
+
+template <class T>
+T Section::get(const std::string& key) const {
+  const YAML::Node n = child(key);
+  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, node_->Mark(), key, "a value");
+  return convert<T>(key, n);
+}
+
+template <class T>
+T Section::get(const std::string& key, const T& fallback) const {
+  const YAML::Node n = child(key);
+  if (!n.IsDefined() || n.IsNull()) {
+    store_default(key, YAML::Node(fallback));
+    return fallback;
+  }
+  return convert<T>(key, n);
+}
+
+#define SUITE_CONFIG_INSTANTIATE(T)                                   \
+  template T Section::get<T>(const std::string&) const;               \
+  template T Section::get<T>(const std::string&, const T&) const;
+SUITE_CONFIG_INSTANTIATE(bool)
+SUITE_CONFIG_INSTANTIATE(int)
+SUITE_CONFIG_INSTANTIATE(long long)
+SUITE_CONFIG_INSTANTIATE(double)
+SUITE_CONFIG_INSTANTIATE(std::string)
+SUITE_CONFIG_INSTANTIATE(std::vector<double>)
+SUITE_CONFIG_INSTANTIATE(std::vector<long long>)
+SUITE_CONFIG_INSTANTIATE(std::vector<std::string>)
+#undef SUITE_CONFIG_INSTANTIATE
+
+double Section::number(const std::string& key, Range range) const {
+  const double v = get<double>(key);
+  if (!range.contains(v)) fail_value(key, "must be " + range.describe());
+  return v;
+}
+
+double Section::number(const std::string& key, double fallback, Range range) const {
+  const double v = get<double>(key, fallback);
+  if (!range.contains(v)) fail_value(key, "must be " + range.describe());
+  return v;
+}
+
+long long Section::integer(const std::string& key, long long fallback, long long min, long long max) const {
+  const long long v = get<long long>(key, fallback);
+  if (v < min || v > max) fail_value(key, fmt::format("must be a whole number in [{}, {}]", min, max));
+  return v;
+}
+
+double Section::parse_quantity(const std::string& key, const YAML::Node& n, const std::string& unit) const {
+  const std::string unit_note = unit.empty() || unit == "1" ? "" : fmt::format(" (in {} or another unit of the same kind)", unit);
+  if (!n.IsScalar()) fail_value(key, "expected a number" + unit_note);
+  const std::string text = n.Scalar();
+  double v = 0;
+  std::size_t used = 0;
+  if (!parse_double(text, v, used)) fail_value(key, "expected a number" + unit_note);
+  if (!std::isfinite(v)) fail_value(key, "expected a finite number" + unit_note);
+  const std::string given = trim(std::string_view(text).substr(used));
+  if (given.empty()) return v;
+  try {
+    return units::convert(v, given, unit.empty() ? "1" : unit);
+  } catch (const InputError& e) {
+    fail_value(key, e.what());
+  }
+}
+
+double Section::quantity(const std::string& key, const std::string& unit, Range range) const {
+  const YAML::Node n = child(key);
+  if (!n.IsDefined() || n.IsNull())
+    missing(*state_, path_, node_->Mark(), key, unit.empty() ? "a number" : "a value in " + unit);
+  const double v = parse_quantity(key, n, unit);
+  if (!range.contains(v)) fail_value(key, fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit));
+  return v;
+}
+
+double Section::quantity(const std::string& key, const std::string& unit, double fallback, Range range) const {
+  const YAML::Node n = child(key);
+  if (!n.IsDefined() || n.IsNull()) {
+    store_default(key, unit.empty() || unit == "1" ? YAML::Node(fallback)
+                                                   : YAML::Node(fmt::format("{} {}", fallback, unit)));
+    return fallback;
+  }
+  const double v = parse_quantity(key, n, unit);
+  if (!range.contains(v)) fail_value(key, fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit));
+  return v;
+}
+
+std::vector<std::vector<double>> Section::table(const std::string& key, const std::vector<std::string>& units) const {
+  const YAML::Node n = child(key);
+  const std::string shape = fmt::format("a list of rows [{}]", join(units));
+  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, node_->Mark(), key, shape);
+  if (!n.IsSequence() || n.size() == 0) fail_value(key, "expected " + shape);
+  std::vector<std::vector<double>> out;
+  for (std::size_t r = 0; r < n.size(); ++r) {
+    const YAML::Node row = n[r];
+    if (!row.IsSequence() || row.size() != units.size())
+      fail_value(key, fmt::format("row {} ('{}') must have {} entries [{}]", r + 1, one_line(row), units.size(), join(units)));
+    std::vector<double> values;
+    for (std::size_t c = 0; c < units.size(); ++c) {
+      try {
+        values.push_back(parse_quantity(key, row[c], units[c]));
+      } catch (const InputError&) {
+        fail_value(key, fmt::format("row {}, entry {} ('{}') is not a value in {}", r + 1, c + 1,
+                                    one_line(row[c]), units[c]));
+      }
+    }
+    out.push_back(std::move(values));
+  }
+  return out;
+}
+
+std::string Section::choice(const std::string& key, const std::vector<std::string>& valid) const {
+  const std::string v = get<std::string>(key);
+  if (std::find(valid.begin(), valid.end(), v) != valid.end()) return v;
+  std::string problem = fmt::format("must be one of {}", join(valid));
+  if (auto best = closest_match(v, valid)) problem = fmt::format("did you mean '{}'? It {}", *best, problem);
+  fail_value(key, problem);
+}
+
+std::string Section::choice(const std::string& key, const std::vector<std::string>& valid,
+                            const std::string& fallback) const {
+  if (!has(key)) {
+    store_default(key, YAML::Node(fallback));
+    return fallback;
+  }
+  return choice(key, valid);
+}
+
+YAML::Node Section::raw(const std::string& key) const {
+  state_->free_form.insert(child_path(key));
+  return child(key);
+}
+
+// --------------------------------------------------------------------------------------- Config
+
+Config Config::from_string(const std::string& text, const std::string& source_name,
+                           const std::vector<std::string>& overrides) {
+  return Config(load(text, source_name, overrides));
+}
+
+Config Config::from_file(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) {
+    std::error_code ec;
+    const bool exists = std::filesystem::exists(path, ec);
+    throw InputError(fmt::format("cannot open configuration file '{}': {}", path.string(),
+                                 exists ? "it is not readable" : "no such file"));
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return Config(load(text.str(), path.string(), overrides));
+}
+
+Section Config::root() const {
+  return Section(state_, std::make_shared<YAML::Node>(state_->root), "");
+}
+
+void Config::finish() const { check_known(*state_, state_->root, ""); }
+
+std::string Config::effective_yaml() const {
+  YAML::Emitter out;
+  out << YAML::Comment(fmt::format("effective configuration: {} + command-line overrides + defaults",
+                                   state_->source))
+      << YAML::Newline << state_->root;
+  return std::string(out.c_str()) + "\n";
+}
+
+void Config::write_effective(const std::filesystem::path& path) const {
+  std::ofstream out(path);
+  if (!(out << effective_yaml()))
+    throw InputError(fmt::format("cannot write the effective configuration to '{}'", path.string()));
+}
+
+const std::string& Config::source_name() const { return state_->source; }
+
+bool looks_like_override(const std::string& arg) {
+  const auto eq = arg.find('=');
+  return eq != std::string::npos && eq > 0 && arg[0] != '-';
+}
+
+}  // namespace suite::config

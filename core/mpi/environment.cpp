@@ -1,0 +1,55 @@
+#include "core/mpi/environment.hpp"
+
+#include <fmt/format.h>
+#include <mpi.h>
+
+#include "core/errors.hpp"
+
+namespace suite::mpi {
+namespace {
+int to_mpi(ThreadLevel t) {
+  switch (t) {
+    case ThreadLevel::single: return MPI_THREAD_SINGLE;
+    case ThreadLevel::funneled: return MPI_THREAD_FUNNELED;
+    case ThreadLevel::serialized: return MPI_THREAD_SERIALIZED;
+    case ThreadLevel::multiple: return MPI_THREAD_MULTIPLE;
+  }
+  return MPI_THREAD_SINGLE;
+}
+ThreadLevel from_mpi(int t) {
+  if (t >= MPI_THREAD_MULTIPLE) return ThreadLevel::multiple;
+  if (t >= MPI_THREAD_SERIALIZED) return ThreadLevel::serialized;
+  if (t >= MPI_THREAD_FUNNELED) return ThreadLevel::funneled;
+  return ThreadLevel::single;
+}
+}  // namespace
+
+Environment::Environment(int& argc, char**& argv, ThreadLevel required) {
+  int initialised = 0;
+  SUITE_MPI_CHECK(MPI_Initialized(&initialised));
+  int provided = MPI_THREAD_SINGLE;
+  if (initialised) {
+    SUITE_MPI_CHECK(MPI_Query_thread(&provided));
+  } else {
+    SUITE_MPI_CHECK(MPI_Init_thread(&argc, &argv, to_mpi(required), &provided));
+    owns_ = true;
+    // Errors come back as codes and go through check_mpi instead of aborting inside MPI.
+    SUITE_MPI_CHECK(MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN));
+  }
+  provided_ = from_mpi(provided);
+  if (provided < to_mpi(required)) {
+    throw LibraryError(fmt::format("MPI provides thread level {} but {} was required", provided,
+                                   to_mpi(required)));
+  }
+}
+
+Environment::~Environment() {
+  if (!owns_) return;
+  int finalised = 0;
+  MPI_Finalized(&finalised);
+  if (!finalised) MPI_Finalize();
+}
+
+Comm Environment::world() const { return Comm(MPI_COMM_WORLD); }
+
+}  // namespace suite::mpi

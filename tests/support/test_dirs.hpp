@@ -1,0 +1,39 @@
+#pragma once
+// A fresh scratch folder per test, under the build tree, the same on every rank.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "core/errors.hpp"
+#include "core/mpi/comm.hpp"
+
+namespace suite::testing {
+
+// <SUITE_TEST_TMP or the system temp>/<test suite>.<test name>/; emptied by rank 0 first.
+// COLLECTIVE over `comm`.
+inline std::filesystem::path scratch_dir(const mpi::Comm& comm) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const char* base = std::getenv("SUITE_TEST_TMP");
+  const std::filesystem::path root = base ? std::filesystem::path(base) : std::filesystem::temp_directory_path() / "suite-tests";
+  const auto dir = root / (std::string(info->test_suite_name()) + "." + info->name() + ".np" + std::to_string(comm.size()));
+  if (comm.is_root()) {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+  }
+  comm.barrier();
+  return dir;
+}
+
+// The InputError message of `f`, or "" if it did not throw one.
+template <class F>
+std::string input_error_of(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace suite::testing
