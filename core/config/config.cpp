@@ -223,7 +223,7 @@ YAML::Node Section::child(const std::string& key) const {
   return self[key];
 }
 
-void Section::fail_value(const std::string& key, const std::string& problem) const {
+void Section::reject(const std::string& key, const std::string& problem) const {
   const std::string p = child_path(key);
   const YAML::Node n = static_cast<const YAML::Node&>(*node_)[key];
   if (!n.IsDefined()) {
@@ -249,18 +249,34 @@ void Section::store_default(const std::string& key, const YAML::Node& value) con
 }
 
 namespace {
-[[noreturn]] void missing(const State& s, const std::string& section_path, const YAML::Mark& mark,
+// A required key is absent. If the section holds a key the program never asked for that is a
+// near miss of it, the message points at that line: the usual cause is a typo.
+[[noreturn]] void missing(const State& s, const std::string& section_path, const YAML::Node& section,
                           const std::string& key, const std::string& what) {
-  const std::string where = section_path.empty() ? s.source : location(s, section_path, mark);
-  throw InputError(fmt::format("{}: missing required key '{}' ({})", where,
-                               join_path(section_path, key), what));
+  auto asked = s.requested.find(section_path);
+  std::vector<std::string> unknown;
+  std::map<std::string, YAML::Mark> marks;
+  for (const auto& kv : section) {
+    const std::string k = kv.first.Scalar();
+    if (asked == s.requested.end() || !asked->second.count(k)) {
+      unknown.push_back(k);
+      marks[k] = kv.first.Mark();
+    }
+  }
+  if (auto typo = closest_match(key, unknown)) {
+    const std::string p = join_path(section_path, *typo);
+    throw InputError(fmt::format("{}: unknown key '{}'; did you mean '{}'? (it is required: {})",
+                                 location(s, p, marks[*typo]), p, key, what));
+  }
+  const std::string where = section_path.empty() ? s.source : location(s, section_path, section.Mark());
+  throw InputError(fmt::format("{}: missing required key '{}' ({})", where, join_path(section_path, key), what));
 }
 }  // namespace
 
 Section Section::section(const std::string& key) const {
   const YAML::Node n = child(key);
-  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, node_->Mark(), key, "a section of keys");
-  if (!n.IsMap()) fail_value(key, "expected a section (indented key: value lines)");
+  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, *node_, key, "a section of keys");
+  if (!n.IsMap()) reject(key, "expected a section (indented key: value lines)");
   return Section(state_, std::make_shared<YAML::Node>(n), child_path(key));
 }
 
@@ -271,8 +287,8 @@ std::optional<Section> Section::optional_section(const std::string& key) const {
 
 std::vector<Section> Section::sections(const std::string& key) const {
   const YAML::Node n = child(key);
-  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, node_->Mark(), key, "a list of sections");
-  if (!n.IsSequence()) fail_value(key, "expected a list of sections ('- key: value' entries)");
+  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, *node_, key, "a list of sections");
+  if (!n.IsSequence()) reject(key, "expected a list of sections ('- key: value' entries)");
   std::vector<Section> out;
   for (std::size_t i = 0; i < n.size(); ++i) {
     const std::string p = fmt::format("{}[{}]", child_path(key), i);
@@ -290,32 +306,32 @@ T Section::convert(const std::string& key, const YAML::Node& n) const {
     std::size_t used = 0;
     const std::string text = n.IsScalar() ? n.Scalar() : "";
     if (!n.IsScalar() || !parse_double(text, v, used) || used != text.size())
-      fail_value(key, "expected a number");
-    if (!std::isfinite(v)) fail_value(key, "expected a finite number");
+      reject(key, "expected a number");
+    if (!std::isfinite(v)) reject(key, "expected a finite number");
     return v;
   } else if constexpr (std::is_same_v<T, long long> || std::is_same_v<T, int>) {
     T v = 0;
     const std::string text = n.IsScalar() ? n.Scalar() : "";
     auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
     if (!n.IsScalar() || ec != std::errc() || p != text.data() + text.size())
-      fail_value(key, "expected a whole number");
+      reject(key, "expected a whole number");
     return v;
   } else if constexpr (std::is_same_v<T, bool>) {
     bool v = false;
-    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v)) fail_value(key, "expected true or false");
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v)) reject(key, "expected true or false");
     return v;
   } else if constexpr (std::is_same_v<T, std::string>) {
-    if (!n.IsScalar()) fail_value(key, "expected a single value (text)");
+    if (!n.IsScalar()) reject(key, "expected a single value (text)");
     return n.Scalar();
   } else {
     using E = typename T::value_type;
-    if (!n.IsSequence()) fail_value(key, "expected a list, e.g. [1, 2, 3]");
+    if (!n.IsSequence()) reject(key, "expected a list, e.g. [1, 2, 3]");
     T out;
     for (std::size_t i = 0; i < n.size(); ++i) {
       try {
         out.push_back(convert<E>(key, n[i]));
       } catch (const InputError&) {
-        fail_value(key, fmt::format("entry {} ('{}') has the wrong type", i, one_line(n[i])));
+        reject(key, fmt::format("entry {} ('{}') has the wrong type", i, one_line(n[i])));
       }
     }
     return out;
@@ -325,7 +341,7 @@ T Section::convert(const std::string& key, const YAML::Node& n) const {
 template <class T>
 T Section::get(const std::string& key) const {
   const YAML::Node n = child(key);
-  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, node_->Mark(), key, "a value");
+  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, *node_, key, "a value");
   return convert<T>(key, n);
 }
 
@@ -354,45 +370,45 @@ SUITE_CONFIG_INSTANTIATE(std::vector<std::string>)
 
 double Section::number(const std::string& key, Range range) const {
   const double v = get<double>(key);
-  if (!range.contains(v)) fail_value(key, "must be " + range.describe());
+  if (!range.contains(v)) reject(key, "must be " + range.describe());
   return v;
 }
 
 double Section::number(const std::string& key, double fallback, Range range) const {
   const double v = get<double>(key, fallback);
-  if (!range.contains(v)) fail_value(key, "must be " + range.describe());
+  if (!range.contains(v)) reject(key, "must be " + range.describe());
   return v;
 }
 
 long long Section::integer(const std::string& key, long long fallback, long long min, long long max) const {
   const long long v = get<long long>(key, fallback);
-  if (v < min || v > max) fail_value(key, fmt::format("must be a whole number in [{}, {}]", min, max));
+  if (v < min || v > max) reject(key, fmt::format("must be a whole number in [{}, {}]", min, max));
   return v;
 }
 
 double Section::parse_quantity(const std::string& key, const YAML::Node& n, const std::string& unit) const {
   const std::string unit_note = unit.empty() || unit == "1" ? "" : fmt::format(" (in {} or another unit of the same kind)", unit);
-  if (!n.IsScalar()) fail_value(key, "expected a number" + unit_note);
+  if (!n.IsScalar()) reject(key, "expected a number" + unit_note);
   const std::string text = n.Scalar();
   double v = 0;
   std::size_t used = 0;
-  if (!parse_double(text, v, used)) fail_value(key, "expected a number" + unit_note);
-  if (!std::isfinite(v)) fail_value(key, "expected a finite number" + unit_note);
+  if (!parse_double(text, v, used)) reject(key, "expected a number" + unit_note);
+  if (!std::isfinite(v)) reject(key, "expected a finite number" + unit_note);
   const std::string given = trim(std::string_view(text).substr(used));
   if (given.empty()) return v;
   try {
     return units::convert(v, given, unit.empty() ? "1" : unit);
   } catch (const InputError& e) {
-    fail_value(key, e.what());
+    reject(key, e.what());
   }
 }
 
 double Section::quantity(const std::string& key, const std::string& unit, Range range) const {
   const YAML::Node n = child(key);
   if (!n.IsDefined() || n.IsNull())
-    missing(*state_, path_, node_->Mark(), key, unit.empty() ? "a number" : "a value in " + unit);
+    missing(*state_, path_, *node_, key, unit.empty() ? "a number" : "a value in " + unit);
   const double v = parse_quantity(key, n, unit);
-  if (!range.contains(v)) fail_value(key, fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit));
+  if (!range.contains(v)) reject(key, fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit));
   return v;
 }
 
@@ -404,26 +420,26 @@ double Section::quantity(const std::string& key, const std::string& unit, double
     return fallback;
   }
   const double v = parse_quantity(key, n, unit);
-  if (!range.contains(v)) fail_value(key, fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit));
+  if (!range.contains(v)) reject(key, fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit));
   return v;
 }
 
 std::vector<std::vector<double>> Section::table(const std::string& key, const std::vector<std::string>& units) const {
   const YAML::Node n = child(key);
   const std::string shape = fmt::format("a list of rows [{}]", join(units));
-  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, node_->Mark(), key, shape);
-  if (!n.IsSequence() || n.size() == 0) fail_value(key, "expected " + shape);
+  if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, *node_, key, shape);
+  if (!n.IsSequence() || n.size() == 0) reject(key, "expected " + shape);
   std::vector<std::vector<double>> out;
   for (std::size_t r = 0; r < n.size(); ++r) {
     const YAML::Node row = n[r];
     if (!row.IsSequence() || row.size() != units.size())
-      fail_value(key, fmt::format("row {} ('{}') must have {} entries [{}]", r + 1, one_line(row), units.size(), join(units)));
+      reject(key, fmt::format("row {} ('{}') must have {} entries [{}]", r + 1, one_line(row), units.size(), join(units)));
     std::vector<double> values;
     for (std::size_t c = 0; c < units.size(); ++c) {
       try {
         values.push_back(parse_quantity(key, row[c], units[c]));
       } catch (const InputError&) {
-        fail_value(key, fmt::format("row {}, entry {} ('{}') is not a value in {}", r + 1, c + 1,
+        reject(key, fmt::format("row {}, entry {} ('{}') is not a value in {}", r + 1, c + 1,
                                     one_line(row[c]), units[c]));
       }
     }
@@ -437,7 +453,7 @@ std::string Section::choice(const std::string& key, const std::vector<std::strin
   if (std::find(valid.begin(), valid.end(), v) != valid.end()) return v;
   std::string problem = fmt::format("must be one of {}", join(valid));
   if (auto best = closest_match(v, valid)) problem = fmt::format("did you mean '{}'? It {}", *best, problem);
-  fail_value(key, problem);
+  reject(key, problem);
 }
 
 std::string Section::choice(const std::string& key, const std::vector<std::string>& valid,

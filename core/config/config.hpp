@@ -79,11 +79,14 @@ class Section {
   // A subtree passed on without checking (e.g. PETSc options); all its keys count as known.
   YAML::Node raw(const std::string& key) const;
 
+  // Throws the standard InputError for `key` of this section ("<file>:<line>:<col>: key
+  // '<path>' = '<value>': <problem>"), for checks that involve several keys.
+  [[noreturn]] void reject(const std::string& key, const std::string& problem) const;
+
  private:
   friend class Config;
   Section(std::shared_ptr<State> state, std::shared_ptr<YAML::Node> node, std::string path);
   YAML::Node child(const std::string& key) const;          // marks key as requested
-  [[noreturn]] void fail_value(const std::string& key, const std::string& problem) const;
   std::string child_path(const std::string& key) const;
   template <class T>
   T convert(const std::string& key, const YAML::Node& n) const;

@@ -99,6 +99,14 @@ TEST(Config, MissingRequiredKeyNamesTheSection) {
   EXPECT_NE(msg.find("m.yaml:2:3"), std::string::npos) << msg;
 }
 
+TEST(Config, MissingRequiredKeyPointsAtItsMisspelling) {
+  auto cfg = Config::from_string("reservoir:\n  dpth: 0.6 m\n", "r.yaml");
+  const std::string msg = input_error_of([&] { cfg.root().section("reservoir").quantity("depth", "m"); });
+  EXPECT_NE(msg.find("r.yaml:2:3: unknown key 'reservoir.dpth'; did you mean 'depth'? (it is required: a value in m)"),
+            std::string::npos)
+      << msg;
+}
+
 TEST(Config, ChoiceSuggestsTheClosestValidValue) {
   auto cfg = Config::from_string("walls: stiky\n", "c.yaml");
   const std::string msg = input_error_of([&] { cfg.root().choice("walls", {"slip", "sticky", "friction"}); });
