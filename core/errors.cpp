@@ -39,8 +39,8 @@ long long check_h5(long long id, const char* call, std::source_location loc) {
   std::string detail;
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, first_h5_error, &detail);
   H5Eclear2(H5E_DEFAULT);
-  throw LibraryError(fmt::format("HDF5 call {} failed: {} at {}", call,
-                                 detail.empty() ? "no HDF5 error stack" : detail, where(loc)));
+  throw LibraryError(
+      fmt::format("HDF5 call {} failed: {} at {}", call, detail.empty() ? "no HDF5 error stack" : detail, where(loc)));
 }
 
 }  // namespace suite

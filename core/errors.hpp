@@ -30,8 +30,7 @@ void check_mpi(int rc, const char* call, std::source_location loc = std::source_
 
 // Throws LibraryError if an HDF5 identifier or status is negative; the message includes the
 // innermost entry of HDF5's error stack. Returns `id` so it can wrap H5Fcreate and friends.
-long long check_h5(long long id, const char* call,
-                   std::source_location loc = std::source_location::current());
+long long check_h5(long long id, const char* call, std::source_location loc = std::source_location::current());
 
 }  // namespace suite
 

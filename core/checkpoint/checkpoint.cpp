@@ -17,7 +17,9 @@ namespace {
 constexpr const char* kRoot = "/";
 const std::string kBlocks = "/blocks/";
 
-std::string count_name(const std::string& name) { return kBlocks + name + ".count"; }
+std::string count_name(const std::string& name) {
+  return kBlocks + name + ".count";
+}
 }  // namespace
 
 // ----------------------------------------------------------------------------------- Writer
@@ -50,7 +52,8 @@ void Writer::write(const std::string& name, std::span<const T> local) {
 }
 
 void Writer::write_bytes(const std::string& name, std::span<const std::byte> local) {
-  write<unsigned char>(name, std::span<const unsigned char>(reinterpret_cast<const unsigned char*>(local.data()), local.size()));
+  write<unsigned char>(
+      name, std::span<const unsigned char>(reinterpret_cast<const unsigned char*>(local.data()), local.size()));
 }
 
 void Writer::commit() {
@@ -68,11 +71,12 @@ void Writer::commit() {
     }
   }
   comm_.broadcast(problem, 0);
-  if (!problem.empty()) throw LibraryError(fmt::format("checkpoint '{}' could not be committed: {}", path_.string(), problem));
+  if (!problem.empty())
+    throw LibraryError(fmt::format("checkpoint '{}' could not be committed: {}", path_.string(), problem));
   committed_ = true;
 }
 
-#define SUITE_CKPT_INSTANTIATE(T) \
+#define SUITE_CKPT_INSTANTIATE(T)                                         \
   template void Writer::write<T>(const std::string&, std::span<const T>); \
   template std::vector<T> Reader::read<T>(const std::string&);
 
@@ -81,7 +85,8 @@ void Writer::commit() {
 Reader::Reader(const mpi::Comm& comm, const std::filesystem::path& path, const std::string& solver, long long format)
     : comm_(comm), path_(path) {
   if (!std::filesystem::exists(path))
-    throw InputError(fmt::format("checkpoint '{}' does not exist; list the checkpoint folder and pass an existing file", path.string()));
+    throw InputError(fmt::format("checkpoint '{}' does not exist; list the checkpoint folder and pass an existing file",
+                                 path.string()));
   file_ = std::make_unique<io::H5File>(comm_, path_, io::H5File::Mode::read);
   try {
     header_.solver = file_->get_attribute_string(kRoot, "solver");
@@ -98,13 +103,15 @@ Reader::Reader(const mpi::Comm& comm, const std::filesystem::path& path, const s
     throw InputError(fmt::format("checkpoint '{}' was written by '{}', not '{}'; pass a checkpoint of {}",
                                  path.string(), header_.solver, solver, solver));
   if (header_.format != format || header_.suite_version != here)
-    throw InputError(fmt::format("checkpoint '{}' has format {} from suite {}; this build reads format {} of suite {}; "
-                                 "finish the run with the build that wrote it, or start from scratch",
-                                 path.string(), header_.format, header_.suite_version, format, here));
+    throw InputError(
+        fmt::format("checkpoint '{}' has format {} from suite {}; this build reads format {} of suite {}; "
+                    "finish the run with the build that wrote it, or start from scratch",
+                    path.string(), header_.format, header_.suite_version, format, here));
   if (header_.ranks != comm_.size())
-    throw InputError(fmt::format("checkpoint '{}' was written by {} ranks but this run has {}; a bit-for-bit "
-                                 "restart needs the same count: run with {} ranks (e.g. srun -n {})",
-                                 path.string(), header_.ranks, comm_.size(), header_.ranks, header_.ranks));
+    throw InputError(
+        fmt::format("checkpoint '{}' was written by {} ranks but this run has {}; a bit-for-bit "
+                    "restart needs the same count: run with {} ranks (e.g. srun -n {})",
+                    path.string(), header_.ranks, comm_.size(), header_.ranks, header_.ranks));
 }
 
 Reader::~Reader() = default;

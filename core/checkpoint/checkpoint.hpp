@@ -25,10 +25,10 @@ class H5File;
 namespace suite::checkpoint {
 
 struct Header {
-  std::string solver;       // e.g. "mpm2grid"
-  long long format = 1;     // the solver's checkpoint layout version
+  std::string solver;    // e.g. "mpm2grid"
+  long long format = 1;  // the solver's checkpoint layout version
   long long step = 0;
-  double time = 0.0;        // simulated time, s
+  double time = 0.0;  // simulated time, s
   // Filled in by the writer / read back by the reader:
   std::string suite_version;
   long long ranks = 0;

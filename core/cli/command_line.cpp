@@ -1,7 +1,8 @@
 #include "core/cli/command_line.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 
 #include "core/config/config.hpp"
 
@@ -14,16 +15,18 @@ Parsed parse(const Spec& spec, int argc, const char* const* argv) {
   cl.out = spec.default_out;
   std::string restart;
   app.add_option("args", positional,
-                 spec.scene_required ? "scene YAML file, then key.path=value overrides"
-                                     : "scene YAML file (default: the embedded demo scene), then key.path=value overrides");
+                 spec.scene_required
+                     ? "scene YAML file, then key.path=value overrides"
+                     : "scene YAML file (default: the embedded demo scene), then key.path=value overrides");
   app.add_option("-o,--out", cl.out, "output folder (created)")->capture_default_str();
   app.add_option("--restart", restart, "continue from a checkpoint file, or 'latest' in the output folder");
   app.add_option("--log-level", cl.log_level, "debug, info, warn, error or off")
       ->check(CLI::IsMember({"debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
   app.add_flag("--log-all-ranks", cl.log_all_ranks, "print info messages from every rank, not only rank 0");
-  app.footer("Overrides set any key of the scene, e.g. soil.cohesion=5kPa output.every=20.\n"
-             "PETSc options: the scene's petsc: section or the PETSC_OPTIONS environment variable.");
+  app.footer(
+      "Overrides set any key of the scene, e.g. soil.cohesion=5kPa output.every=20.\n"
+      "PETSc options: the scene's petsc: section or the PETSC_OPTIONS environment variable.");
 
   Parsed result;
   try {
@@ -43,14 +46,16 @@ Parsed parse(const Spec& spec, int argc, const char* const* argv) {
       cl.scene = arg;
     } else {
       result.exit_code = 2;
-      result.message = fmt::format("{}: unexpected argument '{}' after the scene '{}'; overrides are written key.path=value",
-                                   spec.program, arg, cl.scene->string());
+      result.message =
+          fmt::format("{}: unexpected argument '{}' after the scene '{}'; overrides are written key.path=value",
+                      spec.program, arg, cl.scene->string());
       return result;
     }
   }
   if (spec.scene_required && !cl.scene) {
     result.exit_code = 2;
-    result.message = fmt::format("{}: no scene file given; usage: {} scene.yaml [key.path=value ...]", spec.program, spec.program);
+    result.message =
+        fmt::format("{}: no scene file given; usage: {} scene.yaml [key.path=value ...]", spec.program, spec.program);
     return result;
   }
   if (!restart.empty()) cl.restart = restart;

@@ -16,18 +16,18 @@ namespace suite::cli {
 struct Spec {
   std::string program;
   std::string description;
-  bool scene_required = true;           // false: an embedded default scene is used without one
+  bool scene_required = true;  // false: an embedded default scene is used without one
   std::string default_out = "output";
 };
 
 struct CommandLine {
   std::optional<std::filesystem::path> scene;
-  std::vector<std::string> overrides;   // "key.path=value", in order
+  std::vector<std::string> overrides;  // "key.path=value", in order
   std::filesystem::path out;
-  std::optional<std::string> restart;   // a checkpoint file, or "latest"
+  std::optional<std::string> restart;  // a checkpoint file, or "latest"
   std::string log_level = "info";
   bool log_all_ranks = false;
-  std::vector<std::string> argv;        // the whole command line, for run.json
+  std::vector<std::string> argv;  // the whole command line, for run.json
 };
 
 struct Parsed {

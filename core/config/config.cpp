@@ -46,7 +46,9 @@ std::string location(const State& s, const std::string& path, const YAML::Mark& 
   return fmt::format("{}:{}:{}", s.source, mark.line + 1, mark.column + 1);
 }
 
-std::string fmt_g(double v) { return fmt::format("{:g}", v); }
+std::string fmt_g(double v) {
+  return fmt::format("{:g}", v);
+}
 
 bool parse_double(std::string_view text, double& out, std::size_t& used) {
   while (!text.empty() && text.front() == '+') text.remove_prefix(1);
@@ -76,8 +78,7 @@ void reject_duplicate_keys(const State& s, const YAML::Node& n, const std::strin
       reject_duplicate_keys(s, kv.second, p);
     }
   } else if (n.IsSequence()) {
-    for (std::size_t i = 0; i < n.size(); ++i)
-      reject_duplicate_keys(s, n[i], fmt::format("{}[{}]", path, i));
+    for (std::size_t i = 0; i < n.size(); ++i) reject_duplicate_keys(s, n[i], fmt::format("{}[{}]", path, i));
   }
 }
 
@@ -124,8 +125,7 @@ void apply_override(State& s, const std::string& arg) {
       }
       continue;
     }
-    if (!cur.IsMap() && !cur.IsNull())
-      throw bad(fmt::format("'{}' holds a value, not a section", path));
+    if (!cur.IsMap() && !cur.IsNull()) throw bad(fmt::format("'{}' holds a value, not a section", path));
     path = join_path(path, seg);
     if (last) {
       cur[seg] = parsed;
@@ -148,14 +148,13 @@ std::shared_ptr<State> load(const std::string& text, const std::string& source,
   try {
     s->root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
-    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", source, e.mark.line + 1,
-                                 e.mark.column + 1, e.msg));
+    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", source, e.mark.line + 1, e.mark.column + 1, e.msg));
   }
   if (!s->root.IsDefined() || s->root.IsNull()) {
     s->root = YAML::Node(YAML::NodeType::Map);
   } else if (!s->root.IsMap()) {
-    throw InputError(fmt::format("{}: the file must be a mapping of keys (key: value lines), not a {}",
-                                 source, s->root.IsSequence() ? "list" : "single value"));
+    throw InputError(fmt::format("{}: the file must be a mapping of keys (key: value lines), not a {}", source,
+                                 s->root.IsSequence() ? "list" : "single value"));
   }
   reject_duplicate_keys(*s, s->root, "");
   for (const auto& o : overrides) apply_override(*s, o);
@@ -178,8 +177,8 @@ void check_known(const State& s, const YAML::Node& n, const std::string& path) {
         if (valid.empty()) {
           msg += path.empty() ? "; this file takes no keys here" : fmt::format("; '{}' takes no keys", path);
         } else {
-          msg += fmt::format(" (valid {}: {})", path.empty() ? "top-level keys" : "keys in '" + path + "'",
-                             join(valid));
+          msg +=
+              fmt::format(" (valid {}: {})", path.empty() ? "top-level keys" : "keys in '" + path + "'", join(valid));
         }
         throw InputError(msg);
       }
@@ -215,7 +214,9 @@ std::string Range::describe() const {
 Section::Section(std::shared_ptr<State> state, std::shared_ptr<YAML::Node> node, std::string path)
     : state_(std::move(state)), node_(std::move(node)), path_(std::move(path)) {}
 
-std::string Section::child_path(const std::string& key) const { return join_path(path_, key); }
+std::string Section::child_path(const std::string& key) const {
+  return join_path(path_, key);
+}
 
 YAML::Node Section::child(const std::string& key) const {
   state_->requested[path_].insert(key);
@@ -229,8 +230,7 @@ void Section::reject(const std::string& key, const std::string& problem) const {
   if (!n.IsDefined()) {
     throw InputError(fmt::format("{}: {}", location(*state_, path_, node_->Mark()), problem));
   }
-  throw InputError(fmt::format("{}: key '{}' = '{}': {}", location(*state_, p, n.Mark()), p,
-                               one_line(n), problem));
+  throw InputError(fmt::format("{}: key '{}' = '{}': {}", location(*state_, p, n.Mark()), p, one_line(n), problem));
 }
 
 bool Section::has(const std::string& key) const {
@@ -305,16 +305,14 @@ T Section::convert(const std::string& key, const YAML::Node& n) const {
     double v = 0;
     std::size_t used = 0;
     const std::string text = n.IsScalar() ? n.Scalar() : "";
-    if (!n.IsScalar() || !parse_double(text, v, used) || used != text.size())
-      reject(key, "expected a number");
+    if (!n.IsScalar() || !parse_double(text, v, used) || used != text.size()) reject(key, "expected a number");
     if (!std::isfinite(v)) reject(key, "expected a finite number");
     return v;
   } else if constexpr (std::is_same_v<T, long long> || std::is_same_v<T, int>) {
     T v = 0;
     const std::string text = n.IsScalar() ? n.Scalar() : "";
     auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (!n.IsScalar() || ec != std::errc() || p != text.data() + text.size())
-      reject(key, "expected a whole number");
+    if (!n.IsScalar() || ec != std::errc() || p != text.data() + text.size()) reject(key, "expected a whole number");
     return v;
   } else if constexpr (std::is_same_v<T, bool>) {
     bool v = false;
@@ -355,8 +353,8 @@ T Section::get(const std::string& key, const T& fallback) const {
   return convert<T>(key, n);
 }
 
-#define SUITE_CONFIG_INSTANTIATE(T)                                   \
-  template T Section::get<T>(const std::string&) const;               \
+#define SUITE_CONFIG_INSTANTIATE(T)                     \
+  template T Section::get<T>(const std::string&) const; \
   template T Section::get<T>(const std::string&, const T&) const;
 SUITE_CONFIG_INSTANTIATE(bool)
 SUITE_CONFIG_INSTANTIATE(int)
@@ -387,7 +385,8 @@ long long Section::integer(const std::string& key, long long fallback, long long
 }
 
 double Section::parse_quantity(const std::string& key, const YAML::Node& n, const std::string& unit) const {
-  const std::string unit_note = unit.empty() || unit == "1" ? "" : fmt::format(" (in {} or another unit of the same kind)", unit);
+  const std::string unit_note =
+      unit.empty() || unit == "1" ? "" : fmt::format(" (in {} or another unit of the same kind)", unit);
   if (!n.IsScalar()) reject(key, "expected a number" + unit_note);
   const std::string text = n.Scalar();
   double v = 0;
@@ -415,8 +414,8 @@ double Section::quantity(const std::string& key, const std::string& unit, Range 
 double Section::quantity(const std::string& key, const std::string& unit, double fallback, Range range) const {
   const YAML::Node n = child(key);
   if (!n.IsDefined() || n.IsNull()) {
-    store_default(key, unit.empty() || unit == "1" ? YAML::Node(fallback)
-                                                   : YAML::Node(fmt::format("{} {}", fallback, unit)));
+    store_default(
+        key, unit.empty() || unit == "1" ? YAML::Node(fallback) : YAML::Node(fmt::format("{} {}", fallback, unit)));
     return fallback;
   }
   const double v = parse_quantity(key, n, unit);
@@ -433,14 +432,15 @@ std::vector<std::vector<double>> Section::table(const std::string& key, const st
   for (std::size_t r = 0; r < n.size(); ++r) {
     const YAML::Node row = n[r];
     if (!row.IsSequence() || row.size() != units.size())
-      reject(key, fmt::format("row {} ('{}') must have {} entries [{}]", r + 1, one_line(row), units.size(), join(units)));
+      reject(key,
+             fmt::format("row {} ('{}') must have {} entries [{}]", r + 1, one_line(row), units.size(), join(units)));
     std::vector<double> values;
     for (std::size_t c = 0; c < units.size(); ++c) {
       try {
         values.push_back(parse_quantity(key, row[c], units[c]));
       } catch (const InputError&) {
-        reject(key, fmt::format("row {}, entry {} ('{}') is not a value in {}", r + 1, c + 1,
-                                    one_line(row[c]), units[c]));
+        reject(key,
+               fmt::format("row {}, entry {} ('{}') is not a value in {}", r + 1, c + 1, one_line(row[c]), units[c]));
       }
     }
     out.push_back(std::move(values));
@@ -494,12 +494,13 @@ Section Config::root() const {
   return Section(state_, std::make_shared<YAML::Node>(state_->root), "");
 }
 
-void Config::finish() const { check_known(*state_, state_->root, ""); }
+void Config::finish() const {
+  check_known(*state_, state_->root, "");
+}
 
 std::string Config::effective_yaml() const {
   YAML::Emitter out;
-  out << YAML::Comment(fmt::format("effective configuration: {} + command-line overrides + defaults",
-                                   state_->source))
+  out << YAML::Comment(fmt::format("effective configuration: {} + command-line overrides + defaults", state_->source))
       << YAML::Newline << state_->root;
   return std::string(out.c_str()) + "\n";
 }
@@ -510,7 +511,9 @@ void Config::write_effective(const std::filesystem::path& path) const {
     throw InputError(fmt::format("cannot write the effective configuration to '{}'", path.string()));
 }
 
-const std::string& Config::source_name() const { return state_->source; }
+const std::string& Config::source_name() const {
+  return state_->source;
+}
 
 bool looks_like_override(const std::string& arg) {
   const auto eq = arg.find('=');

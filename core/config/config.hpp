@@ -50,7 +50,7 @@ class Section {
   bool has(const std::string& key) const;
   std::vector<std::string> keys() const;
 
-  Section section(const std::string& key) const;                // required mapping
+  Section section(const std::string& key) const;  // required mapping
   std::optional<Section> optional_section(const std::string& key) const;
   std::vector<Section> sections(const std::string& key) const;  // required list of mappings
 
@@ -86,7 +86,7 @@ class Section {
  private:
   friend class Config;
   Section(std::shared_ptr<State> state, std::shared_ptr<YAML::Node> node, std::string path);
-  YAML::Node child(const std::string& key) const;          // marks key as requested
+  YAML::Node child(const std::string& key) const;  // marks key as requested
   std::string child_path(const std::string& key) const;
   template <class T>
   T convert(const std::string& key, const YAML::Node& n) const;

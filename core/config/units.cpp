@@ -12,27 +12,46 @@
 namespace suite::units {
 namespace {
 
-constexpr std::array<int, 4> kLength{1, 0, 0, 0}, kMass{0, 1, 0, 0}, kTime{0, 0, 1, 0},
-    kAngle{0, 0, 0, 1}, kNone{0, 0, 0, 0}, kForce{1, 1, -2, 0}, kPressure{-1, 1, -2, 0},
-    kVolume{3, 0, 0, 0}, kFlow{3, 0, -1, 0};
+constexpr std::array<int, 4> kLength{1, 0, 0, 0}, kMass{0, 1, 0, 0}, kTime{0, 0, 1, 0}, kAngle{0, 0, 0, 1},
+    kNone{0, 0, 0, 0}, kForce{1, 1, -2, 0}, kPressure{-1, 1, -2, 0}, kVolume{3, 0, 0, 0}, kFlow{3, 0, -1, 0};
 
 // Exact factors where a definition exists (international foot, avoirdupois pound, lbf = lb*g0).
 const std::unordered_map<std::string_view, Unit>& symbols() {
   static const std::unordered_map<std::string_view, Unit> table = {
-      {"m", {1.0, kLength}},        {"cm", {1e-2, kLength}},        {"mm", {1e-3, kLength}},
-      {"um", {1e-6, kLength}},      {"km", {1e3, kLength}},         {"ft", {0.3048, kLength}},
-      {"in", {0.0254, kLength}},    {"yd", {0.9144, kLength}},      {"mi", {1609.344, kLength}},
-      {"kg", {1.0, kMass}},         {"g", {1e-3, kMass}},           {"mg", {1e-6, kMass}},
-      {"t", {1e3, kMass}},          {"lb", {0.45359237, kMass}},    {"s", {1.0, kTime}},
-      {"ms", {1e-3, kTime}},        {"min", {60.0, kTime}},         {"h", {3600.0, kTime}},
-      {"hr", {3600.0, kTime}},      {"day", {86400.0, kTime}},      {"N", {1.0, kForce}},
-      {"kN", {1e3, kForce}},        {"lbf", {4.4482216152605, kForce}},
-      {"Pa", {1.0, kPressure}},     {"kPa", {1e3, kPressure}},      {"MPa", {1e6, kPressure}},
-      {"GPa", {1e9, kPressure}},    {"psf", {47.88025898033584, kPressure}},
+      {"m", {1.0, kLength}},
+      {"cm", {1e-2, kLength}},
+      {"mm", {1e-3, kLength}},
+      {"um", {1e-6, kLength}},
+      {"km", {1e3, kLength}},
+      {"ft", {0.3048, kLength}},
+      {"in", {0.0254, kLength}},
+      {"yd", {0.9144, kLength}},
+      {"mi", {1609.344, kLength}},
+      {"kg", {1.0, kMass}},
+      {"g", {1e-3, kMass}},
+      {"mg", {1e-6, kMass}},
+      {"t", {1e3, kMass}},
+      {"lb", {0.45359237, kMass}},
+      {"s", {1.0, kTime}},
+      {"ms", {1e-3, kTime}},
+      {"min", {60.0, kTime}},
+      {"h", {3600.0, kTime}},
+      {"hr", {3600.0, kTime}},
+      {"day", {86400.0, kTime}},
+      {"N", {1.0, kForce}},
+      {"kN", {1e3, kForce}},
+      {"lbf", {4.4482216152605, kForce}},
+      {"Pa", {1.0, kPressure}},
+      {"kPa", {1e3, kPressure}},
+      {"MPa", {1e6, kPressure}},
+      {"GPa", {1e9, kPressure}},
+      {"psf", {47.88025898033584, kPressure}},
       {"psi", {6894.757293168361, kPressure}},
-      {"L", {1e-3, kVolume}},       {"acre", {4046.8564224, {2, 0, 0, 0}}},
+      {"L", {1e-3, kVolume}},
+      {"acre", {4046.8564224, {2, 0, 0, 0}}},
       {"cfs", {0.028316846592, kFlow}},
-      {"rad", {1.0, kAngle}},       {"deg", {std::numbers::pi / 180.0, kAngle}},
+      {"rad", {1.0, kAngle}},
+      {"deg", {std::numbers::pi / 180.0, kAngle}},
       {"1", {1.0, kNone}},
   };
   return table;
@@ -88,8 +107,7 @@ class Parser {
       ++pos_;
     } else {
       const std::size_t start = pos_;
-      while (pos_ < s_.size() && (std::isalpha(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_'))
-        ++pos_;
+      while (pos_ < s_.size() && (std::isalpha(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) ++pos_;
       if (start == pos_ && peek() == '1') ++pos_;  // "1/s"
       const std::string_view sym = s_.substr(start, pos_ - start);
       if (sym.empty()) fail("expected a unit symbol");
@@ -162,8 +180,8 @@ std::string describe(const std::array<int, 4>& dim) {
 double convert(double value, std::string_view from, std::string_view to) {
   const Unit f = parse(from), t = parse(to);
   if (f.dim != t.dim) {
-    throw InputError(fmt::format("unit '{}' ({}) cannot be converted to '{}' ({})", from,
-                                 describe(f.dim), to, describe(t.dim)));
+    throw InputError(
+        fmt::format("unit '{}' ({}) cannot be converted to '{}' ({})", from, describe(f.dim), to, describe(t.dim)));
   }
   return value * f.to_si / t.to_si;
 }

@@ -30,8 +30,8 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
   const std::filesystem::path tmp = path.string() + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd < 0) {
-    throw InputError(fmt::format("cannot write '{}': {}; check that the folder exists and is writable",
-                                 path.string(), std::strerror(errno)));
+    throw InputError(fmt::format("cannot write '{}': {}; check that the folder exists and is writable", path.string(),
+                                 std::strerror(errno)));
   }
   std::size_t done = 0;
   while (done < content.size()) {

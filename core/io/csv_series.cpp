@@ -15,7 +15,9 @@ CsvSeries::CsvSeries(std::filesystem::path path, std::vector<CsvColumn> columns)
 CsvSeries::CsvSeries(std::filesystem::path path, std::vector<CsvColumn> columns, bool truncate)
     : path_(std::move(path)), columns_(std::move(columns)) {
   out_.open(path_, truncate ? std::ios::trunc : std::ios::app);
-  if (!out_) throw InputError(fmt::format("cannot write CSV file '{}'; check that its folder exists and is writable", path_.string()));
+  if (!out_)
+    throw InputError(
+        fmt::format("cannot write CSV file '{}'; check that its folder exists and is writable", path_.string()));
   if (truncate) {
     out_ << header() << '\n';
     out_.flush();
@@ -34,7 +36,9 @@ std::string header_of(const std::vector<CsvColumn>& columns) {
 }
 }  // namespace
 
-std::string CsvSeries::header() const { return header_of(columns_); }
+std::string CsvSeries::header() const {
+  return header_of(columns_);
+}
 
 CsvSeries CsvSeries::resume_at(std::filesystem::path path, std::vector<CsvColumn> columns, double t) {
   std::ifstream in(path);
@@ -43,8 +47,10 @@ CsvSeries CsvSeries::resume_at(std::filesystem::path path, std::vector<CsvColumn
   std::getline(in, line);
   const std::string expected = header_of(columns);
   if (line != expected) {
-    throw InputError(fmt::format("cannot resume '{}': its header '{}' differs from '{}'; it belongs to another "
-                                 "run, move it away or start without restart", path.string(), line, expected));
+    throw InputError(
+        fmt::format("cannot resume '{}': its header '{}' differs from '{}'; it belongs to another "
+                    "run, move it away or start without restart",
+                    path.string(), line, expected));
   }
   kept = line + '\n';
   for (int number = 2; std::getline(in, line); ++number) {
@@ -53,8 +59,8 @@ CsvSeries CsvSeries::resume_at(std::filesystem::path path, std::vector<CsvColumn
     const auto end = line.find(',');
     const char* last = line.data() + (end == std::string::npos ? line.size() : end);
     if (std::from_chars(line.data(), last, time).ptr != last)
-      throw InputError(fmt::format("cannot resume '{}': line {} does not start with a time ('{}')",
-                                   path.string(), number, line));
+      throw InputError(
+          fmt::format("cannot resume '{}': line {} does not start with a time ('{}')", path.string(), number, line));
     if (time <= t) kept += line + '\n';
   }
   in.close();
@@ -64,7 +70,8 @@ CsvSeries CsvSeries::resume_at(std::filesystem::path path, std::vector<CsvColumn
 
 void CsvSeries::append(std::span<const double> row) {
   if (row.size() != columns_.size())
-    throw LibraryError(fmt::format("CSV '{}': a row of {} values for {} columns", path_.string(), row.size(), columns_.size()));
+    throw LibraryError(
+        fmt::format("CSV '{}': a row of {} values for {} columns", path_.string(), row.size(), columns_.size()));
   std::string s;
   for (std::size_t i = 0; i < row.size(); ++i) s += fmt::format("{}{:.12g}", i ? "," : "", row[i]);
   out_ << s << '\n';

@@ -6,11 +6,26 @@
 
 namespace suite::io {
 
-template <> hid_t h5_type<double>() { return H5T_NATIVE_DOUBLE; }
-template <> hid_t h5_type<float>() { return H5T_NATIVE_FLOAT; }
-template <> hid_t h5_type<int>() { return H5T_NATIVE_INT; }
-template <> hid_t h5_type<long long>() { return H5T_NATIVE_LLONG; }
-template <> hid_t h5_type<unsigned char>() { return H5T_NATIVE_UCHAR; }
+template <>
+hid_t h5_type<double>() {
+  return H5T_NATIVE_DOUBLE;
+}
+template <>
+hid_t h5_type<float>() {
+  return H5T_NATIVE_FLOAT;
+}
+template <>
+hid_t h5_type<int>() {
+  return H5T_NATIVE_INT;
+}
+template <>
+hid_t h5_type<long long>() {
+  return H5T_NATIVE_LLONG;
+}
+template <>
+hid_t h5_type<unsigned char>() {
+  return H5T_NATIVE_UCHAR;
+}
 
 namespace {
 
@@ -31,8 +46,7 @@ hid_t collective_transfer() {
 
 }  // namespace
 
-H5File::H5File(const mpi::Comm& comm, const std::filesystem::path& path, Mode mode)
-    : comm_(comm), path_(path) {
+H5File::H5File(const mpi::Comm& comm, const std::filesystem::path& path, Mode mode) : comm_(comm), path_(path) {
   // Errors are reported through check_h5 with HDF5's own description; no automatic printing.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   Handle fapl{static_cast<hid_t>(SUITE_H5_CHECK(H5Pcreate(H5P_FILE_ACCESS))), H5Pclose};
@@ -46,14 +60,15 @@ H5File::H5File(const mpi::Comm& comm, const std::filesystem::path& path, Mode mo
   }
   if (file_ < 0) {
     H5Eclear2(H5E_DEFAULT);
-    throw InputError(fmt::format("cannot {} HDF5 file '{}': {}", mode == Mode::create ? "create" : "open",
-                                 path.string(),
-                                 mode == Mode::create ? "check that its folder exists and is writable"
-                                                      : "it is missing or not an HDF5 file"));
+    throw InputError(fmt::format(
+        "cannot {} HDF5 file '{}': {}", mode == Mode::create ? "create" : "open", path.string(),
+        mode == Mode::create ? "check that its folder exists and is writable" : "it is missing or not an HDF5 file"));
   }
 }
 
-H5File::~H5File() { close(); }
+H5File::~H5File() {
+  close();
+}
 
 void H5File::close() {
   if (file_ >= 0) {
@@ -64,17 +79,20 @@ void H5File::close() {
 }
 
 hid_t H5File::dataset_for_write(const std::string& name, hid_t type, const std::vector<hsize_t>& dims) {
-  Handle space{static_cast<hid_t>(SUITE_H5_CHECK(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr))), H5Sclose};
+  Handle space{
+      static_cast<hid_t>(SUITE_H5_CHECK(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr))),
+      H5Sclose};
   Handle lcpl{static_cast<hid_t>(SUITE_H5_CHECK(H5Pcreate(H5P_LINK_CREATE))), H5Pclose};
   SUITE_H5_CHECK(H5Pset_create_intermediate_group(lcpl.id, 1));
-  return static_cast<hid_t>(SUITE_H5_CHECK(H5Dcreate2(file_, name.c_str(), type, space.id, lcpl.id, H5P_DEFAULT, H5P_DEFAULT)));
+  return static_cast<hid_t>(
+      SUITE_H5_CHECK(H5Dcreate2(file_, name.c_str(), type, space.id, lcpl.id, H5P_DEFAULT, H5P_DEFAULT)));
 }
 
 template <class T>
 RowRange H5File::write_rows(const std::string& name, std::span<const T> local, std::size_t cols) {
   if (cols == 0 || local.size() % cols != 0)
-    throw LibraryError(fmt::format("write_rows('{}'): {} values is not a whole number of rows of {}",
-                                   name, local.size(), cols));
+    throw LibraryError(
+        fmt::format("write_rows('{}'): {} values is not a whole number of rows of {}", name, local.size(), cols));
   RowRange r;
   r.count = static_cast<long long>(local.size() / cols);
   r.offset = comm_.exclusive_prefix_sum(r.count);
@@ -88,7 +106,9 @@ RowRange H5File::write_rows(const std::string& name, std::span<const T> local, s
     start.push_back(0);
     count.push_back(cols);
   }
-  Handle mspace{static_cast<hid_t>(SUITE_H5_CHECK(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr))), H5Sclose};
+  Handle mspace{
+      static_cast<hid_t>(SUITE_H5_CHECK(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr))),
+      H5Sclose};
   if (r.count > 0) {
     SUITE_H5_CHECK(H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr));
   } else {
@@ -98,8 +118,7 @@ RowRange H5File::write_rows(const std::string& name, std::span<const T> local, s
   if (r.total == 0) return r;  // an empty dataset: nothing to transfer (HDF5 rejects it)
   Handle dxpl{collective_transfer(), H5Pclose};
   const T dummy{};
-  SUITE_H5_CHECK(H5Dwrite(dset.id, h5_type<T>(), mspace.id, fspace.id, dxpl.id,
-                          local.empty() ? &dummy : local.data()));
+  SUITE_H5_CHECK(H5Dwrite(dset.id, h5_type<T>(), mspace.id, fspace.id, dxpl.id, local.empty() ? &dummy : local.data()));
   return r;
 }
 
@@ -115,8 +134,8 @@ void H5File::write_replicated(const std::string& name, std::span<const T> values
   }
   Handle dxpl{collective_transfer(), H5Pclose};
   const T dummy{};
-  SUITE_H5_CHECK(H5Dwrite(dset.id, h5_type<T>(), mspace.id, fspace.id, dxpl.id,
-                          values.empty() ? &dummy : values.data()));
+  SUITE_H5_CHECK(
+      H5Dwrite(dset.id, h5_type<T>(), mspace.id, fspace.id, dxpl.id, values.empty() ? &dummy : values.data()));
 }
 
 std::vector<long long> H5File::shape(const std::string& name) {
@@ -143,8 +162,8 @@ std::vector<T> H5File::read_rows(const std::string& name, long long offset, long
   const auto dims = shape(name);
   const hsize_t cols = dims.size() > 1 ? static_cast<hsize_t>(dims[1]) : 1;
   if (offset < 0 || count < 0 || offset + count > dims[0])
-    throw InputError(fmt::format("HDF5 file '{}': rows [{}, {}) of '{}' are outside its {} rows",
-                                 path_.string(), offset, offset + count, name, dims[0]));
+    throw InputError(fmt::format("HDF5 file '{}': rows [{}, {}) of '{}' are outside its {} rows", path_.string(),
+                                 offset, offset + count, name, dims[0]));
   Handle dset{static_cast<hid_t>(SUITE_H5_CHECK(H5Dopen2(file_, name.c_str(), H5P_DEFAULT))), H5Dclose};
   Handle fspace{static_cast<hid_t>(SUITE_H5_CHECK(H5Dget_space(dset.id))), H5Sclose};
   std::vector<hsize_t> start{static_cast<hsize_t>(offset)}, cnt{static_cast<hsize_t>(count)};
@@ -152,7 +171,8 @@ std::vector<T> H5File::read_rows(const std::string& name, long long offset, long
     start.push_back(0);
     cnt.push_back(cols);
   }
-  Handle mspace{static_cast<hid_t>(SUITE_H5_CHECK(H5Screate_simple(static_cast<int>(cnt.size()), cnt.data(), nullptr))), H5Sclose};
+  Handle mspace{static_cast<hid_t>(SUITE_H5_CHECK(H5Screate_simple(static_cast<int>(cnt.size()), cnt.data(), nullptr))),
+                H5Sclose};
   std::vector<T> out(static_cast<std::size_t>(count) * cols);
   if (dims[0] == 0) return out;  // an empty dataset: nothing to transfer
   if (count > 0) {
@@ -172,7 +192,7 @@ std::vector<T> H5File::read_all(const std::string& name) {
   return read_rows<T>(name, 0, shape(name)[0]);
 }
 
-#define SUITE_H5_INSTANTIATE(T)                                                                  \
+#define SUITE_H5_INSTANTIATE(T)                                                                 \
   template RowRange H5File::write_rows<T>(const std::string&, std::span<const T>, std::size_t); \
   template void H5File::write_replicated<T>(const std::string&, std::span<const T>);            \
   template std::vector<T> H5File::read_rows<T>(const std::string&, long long, long long);       \
@@ -191,7 +211,9 @@ void write_attr(hid_t file, const std::string& object, const std::string& attr, 
   Handle obj{static_cast<hid_t>(SUITE_H5_CHECK(H5Oopen(file, object.c_str(), H5P_DEFAULT))), H5Oclose};
   if (H5Aexists(obj.id, attr.c_str()) > 0) SUITE_H5_CHECK(H5Adelete(obj.id, attr.c_str()));
   Handle space{static_cast<hid_t>(SUITE_H5_CHECK(H5Screate(H5S_SCALAR))), H5Sclose};
-  Handle a{static_cast<hid_t>(SUITE_H5_CHECK(H5Acreate2(obj.id, attr.c_str(), type, space.id, H5P_DEFAULT, H5P_DEFAULT))), H5Aclose};
+  Handle a{
+      static_cast<hid_t>(SUITE_H5_CHECK(H5Acreate2(obj.id, attr.c_str(), type, space.id, H5P_DEFAULT, H5P_DEFAULT))),
+      H5Aclose};
   SUITE_H5_CHECK(H5Awrite(a.id, type, data));
 }
 Handle open_attr(hid_t file, const std::filesystem::path& path, const std::string& object, const std::string& attr) {

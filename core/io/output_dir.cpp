@@ -22,7 +22,8 @@ std::filesystem::path prepare_output_dir(const mpi::Comm& comm, const std::files
   }
   comm.broadcast(problem, 0);
   if (!problem.empty()) {
-    throw InputError(fmt::format("cannot use output folder '{}': {}; choose another with --out", dir.string(), problem));
+    throw InputError(
+        fmt::format("cannot use output folder '{}': {}; choose another with --out", dir.string(), problem));
   }
   return std::filesystem::absolute(dir);
 }

@@ -17,20 +17,26 @@ constexpr std::string_view kEnd = "<!-- step end -->";
 
 const char* topology_name(XdmfTopology t) {
   switch (t) {
-    case XdmfTopology::polyvertex: return "Polyvertex";
-    case XdmfTopology::polyline: return "Polyline";
-    case XdmfTopology::triangle: return "Triangle";
-    case XdmfTopology::quadrilateral: return "Quadrilateral";
-    case XdmfTopology::tetrahedron: return "Tetrahedron";
-    case XdmfTopology::hexahedron: return "Hexahedron";
+    case XdmfTopology::polyvertex:
+      return "Polyvertex";
+    case XdmfTopology::polyline:
+      return "Polyline";
+    case XdmfTopology::triangle:
+      return "Triangle";
+    case XdmfTopology::quadrilateral:
+      return "Quadrilateral";
+    case XdmfTopology::tetrahedron:
+      return "Tetrahedron";
+    case XdmfTopology::hexahedron:
+      return "Hexahedron";
   }
   return "Polyvertex";
 }
 
 std::string data_item(const XdmfArray& a, const std::string& h5_file) {
   const std::string dims = a.cols == 1 ? fmt::format("{}", a.rows) : fmt::format("{} {}", a.rows, a.cols);
-  return fmt::format(R"(<DataItem Dimensions="{}" NumberType="{}" Precision="{}" Format="HDF">{}:{}</DataItem>)",
-                     dims, a.number_type, a.precision, h5_file, a.dataset);
+  return fmt::format(R"(<DataItem Dimensions="{}" NumberType="{}" Precision="{}" Format="HDF">{}:{}</DataItem>)", dims,
+                     a.number_type, a.precision, h5_file, a.dataset);
 }
 
 std::string attribute(const XdmfArray& a, const std::string& h5_file, const char* center) {

@@ -12,22 +12,22 @@
 namespace suite::io {
 
 struct XdmfArray {
-  std::string name;          // attribute name shown in ParaView
-  std::string dataset;       // path inside the HDF5 file, e.g. "/particles/velocity"
-  long long rows = 0;        // first dimension
-  int cols = 1;              // 1: scalar, 3: vector, otherwise a matrix
+  std::string name;                   // attribute name shown in ParaView
+  std::string dataset;                // path inside the HDF5 file, e.g. "/particles/velocity"
+  long long rows = 0;                 // first dimension
+  int cols = 1;                       // 1: scalar, 3: vector, otherwise a matrix
   std::string number_type = "Float";  // Float, Int, UInt, Char, UChar
-  int precision = 8;         // bytes
+  int precision = 8;                  // bytes
 };
 
 enum class XdmfTopology { polyvertex, polyline, triangle, quadrilateral, tetrahedron, hexahedron };
 
 struct XdmfGrid {
-  std::string name;                     // e.g. "particles", "grid_nodes"
-  std::string h5_file;                  // HDF5 file name, relative to the .xmf's folder
+  std::string name;     // e.g. "particles", "grid_nodes"
+  std::string h5_file;  // HDF5 file name, relative to the .xmf's folder
   XdmfTopology topology = XdmfTopology::polyvertex;
-  XdmfArray geometry;                   // rows x 2 ("XY") or rows x 3 ("XYZ") coordinates
-  XdmfArray connectivity;               // cells x nodes-per-cell (not used for polyvertex)
+  XdmfArray geometry;      // rows x 2 ("XY") or rows x 3 ("XYZ") coordinates
+  XdmfArray connectivity;  // cells x nodes-per-cell (not used for polyvertex)
   std::vector<XdmfArray> node_attributes;
   std::vector<XdmfArray> cell_attributes;
 };

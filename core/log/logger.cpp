@@ -21,18 +21,22 @@ LogLevel parse_log_level(const std::string& text) {
   if (text == "warn") return LogLevel::warn;
   if (text == "error") return LogLevel::error;
   if (text == "off") return LogLevel::off;
-  throw InputError(fmt::format("log level '{}' is not valid; use one of debug, info, warn, error, off",
-                               text));
+  throw InputError(fmt::format("log level '{}' is not valid; use one of debug, info, warn, error, off", text));
 }
 
 namespace {
 spdlog::level::level_enum to_spd(LogLevel l) {
   switch (l) {
-    case LogLevel::debug: return spdlog::level::debug;
-    case LogLevel::info: return spdlog::level::info;
-    case LogLevel::warn: return spdlog::level::warn;
-    case LogLevel::error: return spdlog::level::err;
-    case LogLevel::off: return spdlog::level::off;
+    case LogLevel::debug:
+      return spdlog::level::debug;
+    case LogLevel::info:
+      return spdlog::level::info;
+    case LogLevel::warn:
+      return spdlog::level::warn;
+    case LogLevel::error:
+      return spdlog::level::err;
+    case LogLevel::off:
+      return spdlog::level::off;
   }
   return spdlog::level::info;
 }
@@ -68,7 +72,9 @@ void Logger::add_file(const std::filesystem::path& path) {
   impl_->log->sinks().push_back(std::move(sink));
 }
 
-void Logger::set_level(LogLevel level) { level_ = level; }
+void Logger::set_level(LogLevel level) {
+  level_ = level;
+}
 
 bool Logger::prints(LogLevel level) const {
   if (level < level_ || level == LogLevel::off) return false;
@@ -79,6 +85,8 @@ void Logger::write(LogLevel level, const std::string& message) {
   impl_->log->log(to_spd(level), message);
 }
 
-void Logger::flush() { impl_->log->flush(); }
+void Logger::flush() {
+  impl_->log->flush();
+}
 
 }  // namespace suite

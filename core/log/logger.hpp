@@ -20,8 +20,8 @@ LogLevel parse_log_level(const std::string& text);
 
 struct LoggerOptions {
   LogLevel level = LogLevel::info;
-  bool all_ranks = false;           // info/warn/debug from every rank, not only rank 0
-  std::ostream* stream = nullptr;   // nullptr: standard error
+  bool all_ranks = false;          // info/warn/debug from every rank, not only rank 0
+  std::ostream* stream = nullptr;  // nullptr: standard error
 };
 
 class Logger {
@@ -36,13 +36,21 @@ class Logger {
   void set_level(LogLevel level);
 
   template <class... A>
-  void debug(fmt::format_string<A...> f, A&&... a) { emit(LogLevel::debug, f, std::forward<A>(a)...); }
+  void debug(fmt::format_string<A...> f, A&&... a) {
+    emit(LogLevel::debug, f, std::forward<A>(a)...);
+  }
   template <class... A>
-  void info(fmt::format_string<A...> f, A&&... a) { emit(LogLevel::info, f, std::forward<A>(a)...); }
+  void info(fmt::format_string<A...> f, A&&... a) {
+    emit(LogLevel::info, f, std::forward<A>(a)...);
+  }
   template <class... A>
-  void warn(fmt::format_string<A...> f, A&&... a) { emit(LogLevel::warn, f, std::forward<A>(a)...); }
+  void warn(fmt::format_string<A...> f, A&&... a) {
+    emit(LogLevel::warn, f, std::forward<A>(a)...);
+  }
   template <class... A>
-  void error(fmt::format_string<A...> f, A&&... a) { emit(LogLevel::error, f, std::forward<A>(a)...); }
+  void error(fmt::format_string<A...> f, A&&... a) {
+    emit(LogLevel::error, f, std::forward<A>(a)...);
+  }
 
   // Whether a message at `level` would be printed by this rank.
   bool prints(LogLevel level) const;

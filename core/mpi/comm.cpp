@@ -37,7 +37,9 @@ Comm Comm::split(int color, int key) const {
   return Comm(c, std::make_shared<Owned>(c));
 }
 
-void Comm::barrier() const { SUITE_MPI_CHECK(MPI_Barrier(raw_)); }
+void Comm::barrier() const {
+  SUITE_MPI_CHECK(MPI_Barrier(raw_));
+}
 
 namespace {
 template <class T>
@@ -48,13 +50,27 @@ T reduce(MPI_Comm c, T v, MPI_Datatype t, MPI_Op op) {
 }
 }  // namespace
 
-double Comm::sum(double v) const { return reduce(raw_, v, MPI_DOUBLE, MPI_SUM); }
-long long Comm::sum(long long v) const { return reduce(raw_, v, MPI_LONG_LONG, MPI_SUM); }
-double Comm::max(double v) const { return reduce(raw_, v, MPI_DOUBLE, MPI_MAX); }
-long long Comm::max(long long v) const { return reduce(raw_, v, MPI_LONG_LONG, MPI_MAX); }
-double Comm::min(double v) const { return reduce(raw_, v, MPI_DOUBLE, MPI_MIN); }
-bool Comm::any(bool v) const { return reduce(raw_, v ? 1 : 0, MPI_INT, MPI_MAX) != 0; }
-bool Comm::all(bool v) const { return reduce(raw_, v ? 1 : 0, MPI_INT, MPI_MIN) != 0; }
+double Comm::sum(double v) const {
+  return reduce(raw_, v, MPI_DOUBLE, MPI_SUM);
+}
+long long Comm::sum(long long v) const {
+  return reduce(raw_, v, MPI_LONG_LONG, MPI_SUM);
+}
+double Comm::max(double v) const {
+  return reduce(raw_, v, MPI_DOUBLE, MPI_MAX);
+}
+long long Comm::max(long long v) const {
+  return reduce(raw_, v, MPI_LONG_LONG, MPI_MAX);
+}
+double Comm::min(double v) const {
+  return reduce(raw_, v, MPI_DOUBLE, MPI_MIN);
+}
+bool Comm::any(bool v) const {
+  return reduce(raw_, v ? 1 : 0, MPI_INT, MPI_MAX) != 0;
+}
+bool Comm::all(bool v) const {
+  return reduce(raw_, v ? 1 : 0, MPI_INT, MPI_MIN) != 0;
+}
 
 long long Comm::exclusive_prefix_sum(long long v) const {
   long long out = 0;

@@ -9,10 +9,14 @@ namespace suite::mpi {
 namespace {
 int to_mpi(ThreadLevel t) {
   switch (t) {
-    case ThreadLevel::single: return MPI_THREAD_SINGLE;
-    case ThreadLevel::funneled: return MPI_THREAD_FUNNELED;
-    case ThreadLevel::serialized: return MPI_THREAD_SERIALIZED;
-    case ThreadLevel::multiple: return MPI_THREAD_MULTIPLE;
+    case ThreadLevel::single:
+      return MPI_THREAD_SINGLE;
+    case ThreadLevel::funneled:
+      return MPI_THREAD_FUNNELED;
+    case ThreadLevel::serialized:
+      return MPI_THREAD_SERIALIZED;
+    case ThreadLevel::multiple:
+      return MPI_THREAD_MULTIPLE;
   }
   return MPI_THREAD_SINGLE;
 }
@@ -38,8 +42,7 @@ Environment::Environment(int& argc, char**& argv, ThreadLevel required) {
   }
   provided_ = from_mpi(provided);
   if (provided < to_mpi(required)) {
-    throw LibraryError(fmt::format("MPI provides thread level {} but {} was required", provided,
-                                   to_mpi(required)));
+    throw LibraryError(fmt::format("MPI provides thread level {} but {} was required", provided, to_mpi(required)));
   }
 }
 
@@ -50,6 +53,8 @@ Environment::~Environment() {
   if (!finalised) MPI_Finalize();
 }
 
-Comm Environment::world() const { return Comm(MPI_COMM_WORLD); }
+Comm Environment::world() const {
+  return Comm(MPI_COMM_WORLD);
+}
 
 }  // namespace suite::mpi

@@ -4,9 +4,8 @@
 // Phases may nest; each phase's total is its own inclusive time.
 #include <chrono>
 #include <map>
-#include <string>
-
 #include <nlohmann/json_fwd.hpp>
+#include <string>
 
 #include "core/mpi/comm.hpp"
 

@@ -33,8 +33,11 @@ void write_json_atomic(const std::filesystem::path& path, const nlohmann::json& 
 }
 
 RunRecord::RunRecord(const mpi::Comm& comm, std::string program, std::vector<std::string> command_line)
-    : comm_(comm), program_(std::move(program)), command_line_(std::move(command_line)),
-      started_utc_(utc_now()), start_(std::chrono::steady_clock::now()) {}
+    : comm_(comm),
+      program_(std::move(program)),
+      command_line_(std::move(command_line)),
+      started_utc_(utc_now()),
+      start_(std::chrono::steady_clock::now()) {}
 
 double RunRecord::wall_seconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -75,9 +78,15 @@ void Summary::set(const std::string& key, double value, const std::string& unit)
   if (!unit.empty()) json_["units"][key] = unit;
 }
 
-void Summary::set(const std::string& key, const std::string& value) { json_[key] = value; }
-void Summary::set(const std::string& key, bool value) { json_[key] = value; }
+void Summary::set(const std::string& key, const std::string& value) {
+  json_[key] = value;
+}
+void Summary::set(const std::string& key, bool value) {
+  json_[key] = value;
+}
 
-void Summary::write(const std::filesystem::path& path) const { write_json_atomic(path, json_); }
+void Summary::write(const std::filesystem::path& path) const {
+  write_json_atomic(path, json_);
+}
 
 }  // namespace suite

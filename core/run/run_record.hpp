@@ -6,10 +6,9 @@
 //    "phases": {name: {calls, min_s, mean_s, max_s}}, "status", ...extra}
 #include <chrono>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/mpi/comm.hpp"
 #include "core/run/phase_timers.hpp"

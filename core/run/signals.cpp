@@ -45,9 +45,13 @@ SignalWatcher::~SignalWatcher() {
   g_installed = false;
 }
 
-SignalRequest SignalWatcher::pending() const { return static_cast<SignalRequest>(g_request.load()); }
+SignalRequest SignalWatcher::pending() const {
+  return static_cast<SignalRequest>(g_request.load());
+}
 
-int SignalWatcher::last_signal() const { return g_signal.load(); }
+int SignalWatcher::last_signal() const {
+  return g_signal.load();
+}
 
 SignalRequest SignalWatcher::poll(const mpi::Comm& comm) {
   const int mine = g_request.exchange(0);
@@ -56,9 +60,12 @@ SignalRequest SignalWatcher::poll(const mpi::Comm& comm) {
 
 const char* describe(SignalRequest r) {
   switch (r) {
-    case SignalRequest::none: return "none";
-    case SignalRequest::checkpoint: return "checkpoint (SIGUSR1)";
-    case SignalRequest::checkpoint_and_stop: return "checkpoint and stop (SIGTERM/SIGINT)";
+    case SignalRequest::none:
+      return "none";
+    case SignalRequest::checkpoint:
+      return "checkpoint (SIGUSR1)";
+    case SignalRequest::checkpoint_and_stop:
+      return "checkpoint and stop (SIGTERM/SIGINT)";
   }
   return "?";
 }

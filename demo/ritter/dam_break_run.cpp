@@ -65,7 +65,8 @@ Scene read_scene(const config::Config& cfg) {
   const double wall_time = s.reservoir_length / std::sqrt(s.gravity * s.h0);
   if (s.t_end > wall_time)
     time.reject("end", fmt::format("must be <= reservoir.length / sqrt(g h0) = {:.4g} s, when the negative wave "
-                                   "reaches the back wall; shorten time.end or lengthen the reservoir", wall_time));
+                                   "reaches the back wall; shorten time.end or lengthen the reservoir",
+                                   wall_time));
   if (s.sample > s.t_end) time.reject("sample", fmt::format("must be <= time.end ({} s)", s.t_end));
   if (s.output < s.sample) time.reject("output", fmt::format("must be >= time.sample ({} s)", s.sample));
   return s;
@@ -97,15 +98,19 @@ struct Progress {
   double time_to_peak = 0.0;
 };
 
-const std::vector<io::CsvColumn> kColumns{{"time", "s"},          {"discharge_at_dam", "m^3/s"},
-                                          {"outflow", "m^3/s"},   {"front_position", "m"},
-                                          {"volume_in_domain", "m^3"}, {"outflow_volume", "m^3"},
-                                          {"balance_error", ""}};
+const std::vector<io::CsvColumn> kColumns{
+    {"time", "s"},           {"discharge_at_dam", "m^3/s"}, {"outflow", "m^3/s"},
+    {"front_position", "m"}, {"volume_in_domain", "m^3"},   {"outflow_volume", "m^3"},
+    {"balance_error", ""}};
 
 class DamBreakRun {
  public:
   DamBreakRun(const mpi::Comm& comm, const Scene& s, const DamBreakOptions& o, Logger& log)
-      : comm_(comm), s_(s), log_(log), ritter_(s.h0, s.gravity), block_(block_of(comm, s)),
+      : comm_(comm),
+        s_(s),
+        log_(log),
+        ritter_(s.h0, s.gravity),
+        block_(block_of(comm, s)),
         record_(comm, kSolver, o.argv) {
     out_ = io::prepare_output_dir(comm, o.out);
     io::prepare_output_dir(comm, out_ / "fields");
@@ -127,8 +132,8 @@ class DamBreakRun {
     SignalWatcher signals;
     ProgressLine progress(log_, 0.0, s_.t_end);
     const long long first_step = p_.step;
-    log_.info("Ritter dam break: h0 = {} m, c0 = {:.4f} m/s, {} cells on {} ranks, {} samples to t = {} s",
-              s_.h0, ritter_.wave_speed(), s_.cells, comm_.size(), n_steps_, s_.t_end);
+    log_.info("Ritter dam break: h0 = {} m, c0 = {:.4f} m/s, {} cells on {} ranks, {} samples to t = {} s", s_.h0,
+              ritter_.wave_speed(), s_.cells, comm_.size(), n_steps_, s_.t_end);
     while (p_.step < n_steps_) {
       advance();
       progress.report(p_.step, time_of(p_.step), s_.sample, p_.step == n_steps_);
@@ -138,7 +143,8 @@ class DamBreakRun {
       if (req != SignalRequest::none || max_reached || p_.step % s_.checkpoint_every == 0) write_checkpoint();
       if (req == SignalRequest::checkpoint_and_stop || max_reached) {
         const std::string why = max_reached ? fmt::format("time.max_steps = {}", s_.max_steps) : describe(req);
-        log_.warn("stopped at step {} (t = {} s) on {}; continue with --restart latest", p_.step, time_of(p_.step), why);
+        log_.warn("stopped at step {} (t = {} s) on {}; continue with --restart latest", p_.step, time_of(p_.step),
+                  why);
         record_.write(out_ / "run.json", timers_, "stopped: " + why);
         return 0;
       }
@@ -220,7 +226,10 @@ class DamBreakRun {
     f.set_attribute("/", "step", step);
     f.close();
     if (xdmf_) {
-      io::XdmfGrid grid{"water_surface", name, io::XdmfTopology::polyline, {"surface", "/cells/surface", nodes.total, 2},
+      io::XdmfGrid grid{"water_surface",
+                        name,
+                        io::XdmfTopology::polyline,
+                        {"surface", "/cells/surface", nodes.total, 2},
                         {"segments", "/cells/segments", lines.total, 2, "Int", 8},
                         {{"depth", "/cells/depth", nodes.total, 1},
                          {"velocity", "/cells/velocity", nodes.total, 1},
@@ -250,19 +259,23 @@ class DamBreakRun {
     if (which == "latest") {
       const auto found = checkpoint::latest(checkpoints_, "checkpoint");
       if (!found)
-        throw InputError(fmt::format("--restart latest: no checkpoint in '{}'; run without --restart to start from t = 0",
-                                     checkpoints_.string()));
+        throw InputError(
+            fmt::format("--restart latest: no checkpoint in '{}'; run without --restart to start from t = 0",
+                        checkpoints_.string()));
       path = *found;
     }
     checkpoint::Reader r(comm_, path, kSolver, kCheckpointFormat);
     const auto bytes = r.read_bytes("progress");
     if (bytes.size() != sizeof(Progress))
-      throw InputError(fmt::format("checkpoint '{}' holds a progress record of {} bytes, not {}", path.string(), bytes.size(), sizeof(Progress)));
+      throw InputError(fmt::format("checkpoint '{}' holds a progress record of {} bytes, not {}", path.string(),
+                                   bytes.size(), sizeof(Progress)));
     std::memcpy(&p_, bytes.data(), sizeof p_);
     const auto physics = s_.physics();
     if (r.read<double>("scene") != std::vector<double>(physics.begin(), physics.end()))
-      throw InputError(fmt::format("checkpoint '{}' was written for another scene (depth, lengths, gravity, cells or time "
-                                   "sampling differ); restart with the scene it was written with", path.string()));
+      throw InputError(
+          fmt::format("checkpoint '{}' was written for another scene (depth, lengths, gravity, cells or time "
+                      "sampling differ); restart with the scene it was written with",
+                      path.string()));
     const auto range = r.read<long long>("block");
     if (range != std::vector<long long>{block_.first, block_.count})
       throw LibraryError("checkpoint block layout differs from this run's");
@@ -283,8 +296,10 @@ class DamBreakRun {
     summary.set("cells", double(s_.cells));
     if (comm_.is_root()) summary.write(out_ / "summary.json");
     record_.write(out_ / "run.json", timers_, "completed");
-    log_.info("done: discharge at the dam {:.6g} m^3/s (Ritter: 8/27 sqrt(g) h0^1.5 x width), peak outflow {:.6g} m^3/s "
-              "at t = {} s, largest water-balance error {:.2e}", q_dam, p_.peak_outflow, p_.time_to_peak, p_.max_balance_error);
+    log_.info(
+        "done: discharge at the dam {:.6g} m^3/s (Ritter: 8/27 sqrt(g) h0^1.5 x width), peak outflow {:.6g} m^3/s "
+        "at t = {} s, largest water-balance error {:.2e}",
+        q_dam, p_.peak_outflow, p_.time_to_peak, p_.max_balance_error);
     log_.info("outputs in {}: summary.json, discharge.csv, dam_break.xmf (open in ParaView), run.json", out_.string());
   }
 
@@ -299,8 +314,8 @@ class DamBreakRun {
   long long n_steps_ = 0, output_every_ = 1;
   double initial_volume_ = 0.0;
   Progress p_;
-  std::optional<io::CsvSeries> csv_;     // rank 0 only
-  std::optional<io::XdmfSeries> xdmf_;   // rank 0 only
+  std::optional<io::CsvSeries> csv_;    // rank 0 only
+  std::optional<io::XdmfSeries> xdmf_;  // rank 0 only
 };
 
 }  // namespace

@@ -15,6 +15,8 @@ ShallowWaterState RitterSolution::at(double x, double t) const {
   return {s * s / (9.0 * g_), 2.0 / 3.0 * (c0_ + xi)};
 }
 
-double RitterSolution::unit_discharge_at_dam() const { return 8.0 / 27.0 * std::sqrt(g_) * std::pow(h0_, 1.5); }
+double RitterSolution::unit_discharge_at_dam() const {
+  return 8.0 / 27.0 * std::sqrt(g_) * std::pow(h0_, 1.5);
+}
 
 }  // namespace suite::demo

@@ -19,9 +19,9 @@ class RitterSolution {
  public:
   RitterSolution(double h0, double gravity);
   ShallowWaterState at(double x, double t) const;
-  double wave_speed() const { return c0_; }                      // c0, m/s
+  double wave_speed() const { return c0_; }                        // c0, m/s
   double front_position(double t) const { return 2.0 * c0_ * t; }  // m
-  double unit_discharge_at_dam() const;                          // m^2/s
+  double unit_discharge_at_dam() const;                            // m^2/s
 
  private:
   double h0_, g_, c0_;

@@ -1,7 +1,7 @@
 // Checkpoints: bit-for-bit round trip per rank, atomic appearance, and refusal of files from
 // another solver, format, suite version or rank count.
-#include <gtest/gtest.h>
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 #include <hdf5.h>
 
 #include <cstring>
@@ -22,7 +22,9 @@ struct Counters {
   int rebalance_count;
 };
 
-ckpt::Header header(long long step) { return {"mpm2grid", 3, step, 0.001 * step, "", 0}; }
+ckpt::Header header(long long step) {
+  return {"mpm2grid", 3, step, 0.001 * step, "", 0};
+}
 
 TEST(Checkpoint, RoundTripIsBitForBitPerRank) {
   suite::mpi::Comm comm(MPI_COMM_WORLD);
@@ -106,7 +108,9 @@ TEST(Checkpoint, RefusesOtherSolverFormatOrVersion) {
     ckpt::Writer w(comm, path, header(1));
     w.commit();
   }
-  EXPECT_NE(input_error_of([&] { ckpt::Reader r(comm, path, "carving", 3); }).find("was written by 'mpm2grid', not 'carving'"),
+  EXPECT_NE(input_error_of([&] {
+              ckpt::Reader r(comm, path, "carving", 3);
+            }).find("was written by 'mpm2grid', not 'carving'"),
             std::string::npos);
   const std::string fmt_msg = input_error_of([&] { ckpt::Reader r(comm, path, "mpm2grid", 4); });
   EXPECT_NE(fmt_msg.find("has format 3 from suite " + suite::build_info().version + "; this build reads format 4"),
@@ -125,7 +129,8 @@ TEST(Checkpoint, RefusesOtherSolverFormatOrVersion) {
     H5Aclose(a), H5Sclose(sp), H5Tclose(t), H5Fclose(f);
   }
   comm.barrier();
-  EXPECT_NE(input_error_of([&] { ckpt::Reader r(comm, path, "mpm2grid", 3); }).find("from suite 9.9.9"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { ckpt::Reader r(comm, path, "mpm2grid", 3); }).find("from suite 9.9.9"),
+            std::string::npos);
   EXPECT_NE(input_error_of([&] { ckpt::Reader r(comm, dir / "none.h5", "mpm2grid", 3); }).find("does not exist"),
             std::string::npos);
 }
@@ -141,7 +146,8 @@ TEST(Checkpoint, RefusesAnotherRankCount) {
   }
   auto alone = world.split(world.rank(), 0);  // one rank each
   const std::string msg = input_error_of([&] { ckpt::Reader r(alone, path, "mpm2grid", 3); });
-  EXPECT_NE(msg.find(fmt::format("was written by {} ranks but this run has 1", world.size())), std::string::npos) << msg;
+  EXPECT_NE(msg.find(fmt::format("was written by {} ranks but this run has 1", world.size())), std::string::npos)
+      << msg;
   EXPECT_NE(msg.find("srun -n 2"), std::string::npos) << msg;
 }
 

@@ -6,7 +6,8 @@ namespace {
 
 suite::cli::Parsed parse(std::vector<const char*> args, bool scene_required = true) {
   args.insert(args.begin(), "mpm2grid");
-  return suite::cli::parse({"mpm2grid", "test program", scene_required, "out"}, static_cast<int>(args.size()), args.data());
+  return suite::cli::parse({"mpm2grid", "test program", scene_required, "out"}, static_cast<int>(args.size()),
+                           args.data());
 }
 
 TEST(CommandLine, SceneThenOverridesThenOptions) {

@@ -29,7 +29,9 @@ steps: 100
 gravity: [0, -9.81]
 )";
 
-Config scene(std::vector<std::string> overrides = {}) { return Config::from_string(kScene, "scene.yaml", overrides); }
+Config scene(std::vector<std::string> overrides = {}) {
+  return Config::from_string(kScene, "scene.yaml", overrides);
+}
 
 TEST(Config, ReadsTypedValuesAndConvertsUnitsToTheRequestedOnes) {
   auto cfg = scene();
@@ -73,7 +75,8 @@ TEST(Config, UnknownTopLevelSectionIsAnError) {
 
 TEST(Config, OutOfRangeValueNamesTheRangeAndUnit) {
   auto cfg = Config::from_string("soil:\n  cohesion: -3 kPa\n", "s.yaml");
-  const std::string msg = input_error_of([&] { cfg.root().section("soil").quantity("cohesion", "Pa", Range::at_least(0)); });
+  const std::string msg =
+      input_error_of([&] { cfg.root().section("soil").quantity("cohesion", "Pa", Range::at_least(0)); });
   EXPECT_NE(msg.find("s.yaml:2:13: key 'soil.cohesion' = '-3 kPa': must be >= 0 Pa"), std::string::npos) << msg;
 }
 
@@ -166,8 +169,10 @@ TEST(Config, DuplicateKeysAreRejected) {
 TEST(Config, SyntaxErrorsAndMissingFilesNameTheFile) {
   EXPECT_NE(input_error_of([] { Config::from_string("a: [1, 2\n", "bad.yaml"); }).find("bad.yaml:"), std::string::npos);
   const std::string msg = input_error_of([] { Config::from_file("/nonexistent/scene.yaml"); });
-  EXPECT_NE(msg.find("cannot open configuration file '/nonexistent/scene.yaml': no such file"), std::string::npos) << msg;
-  EXPECT_NE(input_error_of([] { Config::from_string("- 1\n- 2\n", "list.yaml"); }).find("must be a mapping"), std::string::npos);
+  EXPECT_NE(msg.find("cannot open configuration file '/nonexistent/scene.yaml': no such file"), std::string::npos)
+      << msg;
+  EXPECT_NE(input_error_of([] { Config::from_string("- 1\n- 2\n", "list.yaml"); }).find("must be a mapping"),
+            std::string::npos);
 }
 
 TEST(Config, RawSubtreesAreNotChecked) {

@@ -35,8 +35,9 @@ TEST(CsvSeries, ResumeDropsRowsAfterTheRestartTime) {
   auto resumed = suite::io::CsvSeries::resume_at(dir / "q.csv", cols, 2.0);
   resumed.append({3.0, 31.0});
   EXPECT_EQ(read(dir / "q.csv"), "time [s],q [m^3/s]\n0,0\n1,10\n2,20\n3,31\n");
-  const std::string msg = suite::testing::input_error_of(
-      [&] { suite::io::CsvSeries::resume_at(dir / "q.csv", {{"time", "h"}, {"q", "m^3/s"}}, 1.0); });
+  const std::string msg = suite::testing::input_error_of([&] {
+    suite::io::CsvSeries::resume_at(dir / "q.csv", {{"time", "h"}, {"q", "m^3/s"}}, 1.0);
+  });
   EXPECT_NE(msg.find("differs from 'time [h],q [m^3/s]'"), std::string::npos) << msg;
 }
 

@@ -29,8 +29,10 @@ TEST(Errors, MpiFailureNamesTheCallAndMpisText) {
 
 TEST(Errors, Hdf5FailureIncludesTheInnermostStackEntry) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  const std::string msg = library_error_of([] { SUITE_H5_CHECK(H5Fopen("/nonexistent/x.h5", H5F_ACC_RDONLY, H5P_DEFAULT)); });
-  EXPECT_NE(msg.find("HDF5 call H5Fopen(\"/nonexistent/x.h5\", H5F_ACC_RDONLY, H5P_DEFAULT) failed"), std::string::npos) << msg;
+  const std::string msg =
+      library_error_of([] { SUITE_H5_CHECK(H5Fopen("/nonexistent/x.h5", H5F_ACC_RDONLY, H5P_DEFAULT)); });
+  EXPECT_NE(msg.find("HDF5 call H5Fopen(\"/nonexistent/x.h5\", H5F_ACC_RDONLY, H5P_DEFAULT) failed"), std::string::npos)
+      << msg;
   EXPECT_NE(msg.find("unable to open file"), std::string::npos) << msg;
   EXPECT_EQ(SUITE_H5_CHECK(5), 5);
 }

@@ -63,9 +63,11 @@ TEST(H5File, EmptyGlobalArrayAndBadPaths) {
   }
   H5File f(comm, dir / "empty.h5", H5File::Mode::read);
   EXPECT_TRUE(f.read_all<double>("/nothing").empty());
-  EXPECT_NE(suite::testing::input_error_of([&] { f.shape("/missing"); }).find("has no dataset '/missing'"), std::string::npos);
-  EXPECT_NE(suite::testing::input_error_of([&] { H5File g(comm, dir / "absent.h5", H5File::Mode::read); })
-                .find("cannot open HDF5 file"),
+  EXPECT_NE(suite::testing::input_error_of([&] { f.shape("/missing"); }).find("has no dataset '/missing'"),
+            std::string::npos);
+  EXPECT_NE(suite::testing::input_error_of([&] {
+              H5File g(comm, dir / "absent.h5", H5File::Mode::read);
+            }).find("cannot open HDF5 file"),
             std::string::npos);
 }
 

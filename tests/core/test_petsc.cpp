@@ -50,7 +50,8 @@ TEST(Petsc, SessionOnACommunicatorSolvesAndReportsErrors) {
     SUITE_PETSC_CHECK(KSPSetType(ksp, "no_such_solver"));
     ADD_FAILURE() << "an unknown KSP type was accepted";
   } catch (const suite::LibraryError& e) {
-    EXPECT_NE(std::string(e.what()).find("PETSc call KSPSetType(ksp, \"no_such_solver\") failed"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("PETSc call KSPSetType(ksp, \"no_such_solver\") failed"), std::string::npos)
+        << e.what();
   }
   KSPDestroy(&ksp);
   VecDestroy(&x);

@@ -62,7 +62,8 @@ TEST(OutputDir, CreatedOnceAndBadPathsAreOneErrorOnEveryRank) {
   EXPECT_TRUE(std::filesystem::is_directory(made));
   if (comm.is_root()) std::ofstream(dir / "file") << "x";
   comm.barrier();
-  const std::string msg = suite::testing::input_error_of([&] { suite::io::prepare_output_dir(comm, dir / "file" / "sub"); });
+  const std::string msg =
+      suite::testing::input_error_of([&] { suite::io::prepare_output_dir(comm, dir / "file" / "sub"); });
   EXPECT_NE(msg.find("cannot use output folder"), std::string::npos) << msg;
   EXPECT_NE(msg.find("choose another with --out"), std::string::npos) << msg;
 }

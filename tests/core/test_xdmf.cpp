@@ -34,10 +34,20 @@ std::vector<XdmfGrid> write_step(const suite::mpi::Comm& comm, const std::filesy
   std::vector<double> mass{1.0 + comm.rank()};
   f.write_rows<double>("/grid/mass", mass);
 
-  XdmfGrid particles{"particles", name, suite::io::XdmfTopology::polyvertex,
-                     {"position", "/particles/position", p.total, 3}, {}, {{"velocity", "/particles/velocity", p.total, 3}}, {}};
-  XdmfGrid grid{"grid", name, suite::io::XdmfTopology::quadrilateral, {"xy", "/grid/xy", nodes.total, 2},
-                {"quads", "/grid/quads", cells.total, 4, "Int", 8}, {}, {{"mass", "/grid/mass", cells.total, 1}}};
+  XdmfGrid particles{"particles",
+                     name,
+                     suite::io::XdmfTopology::polyvertex,
+                     {"position", "/particles/position", p.total, 3},
+                     {},
+                     {{"velocity", "/particles/velocity", p.total, 3}},
+                     {}};
+  XdmfGrid grid{"grid",
+                name,
+                suite::io::XdmfTopology::quadrilateral,
+                {"xy", "/grid/xy", nodes.total, 2},
+                {"quads", "/grid/quads", cells.total, 4, "Int", 8},
+                {},
+                {{"mass", "/grid/mass", cells.total, 1}}};
   return {particles, grid};
 }
 

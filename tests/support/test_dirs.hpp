@@ -15,8 +15,10 @@ namespace suite::testing {
 inline std::filesystem::path scratch_dir(const mpi::Comm& comm) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const char* base = std::getenv("SUITE_TEST_TMP");
-  const std::filesystem::path root = base ? std::filesystem::path(base) : std::filesystem::temp_directory_path() / "suite-tests";
-  const auto dir = root / (std::string(info->test_suite_name()) + "." + info->name() + ".np" + std::to_string(comm.size()));
+  const std::filesystem::path root =
+      base ? std::filesystem::path(base) : std::filesystem::temp_directory_path() / "suite-tests";
+  const auto dir =
+      root / (std::string(info->test_suite_name()) + "." + info->name() + ".np" + std::to_string(comm.size()));
   if (comm.is_root()) {
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
