@@ -38,7 +38,8 @@ class Writer {
  public:
   // COLLECTIVE. `path` is the final name, e.g. dir / "checkpoint_000100.h5".
   Writer(const mpi::Comm& comm, std::filesystem::path path, Header header);
-  ~Writer();  // without commit(): the temporary file is removed, no checkpoint appears
+  // COLLECTIVE. Without commit(): the temporary file is removed, no checkpoint appears.
+  ~Writer();
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
 

@@ -4,7 +4,8 @@
 // Distributed arrays are written by rows: each rank passes its local rows (row-major, `cols`
 // values per row) and the rows land in rank order, rank 0's first. A dataset is 1D when
 // cols == 1 and 2D (rows x cols) otherwise. Writes use collective MPI-IO transfers.
-// Every member is COLLECTIVE: all ranks call it in the same order with the same names.
+// Every member is COLLECTIVE: all ranks call it in the same order with the same names; the
+// destructor too (it closes the file), so an H5File must not outlive a rank-local exception.
 #include <hdf5.h>
 
 #include <filesystem>

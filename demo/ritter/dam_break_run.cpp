@@ -15,6 +15,7 @@
 #include "core/io/output_dir.hpp"
 #include "core/io/xdmf.hpp"
 #include "core/log/progress.hpp"
+#include "core/mpi/collective_try.hpp"
 #include "core/run/phase_timers.hpp"
 #include "core/run/run_record.hpp"
 #include "core/run/signals.hpp"
@@ -190,13 +191,16 @@ class DamBreakRun {
     }
   }
 
+  // Rank 0 owns the CSV and XDMF files; a problem with them stops every rank. COLLECTIVE.
   void start_outputs(bool resuming) {
-    if (!comm_.is_root()) return;
-    const double t = time_of(p_.step);
-    csv_ = resuming ? io::CsvSeries::resume_at(out_ / "discharge.csv", kColumns, t)
-                    : io::CsvSeries(out_ / "discharge.csv", kColumns);
-    xdmf_.emplace(out_ / "dam_break.xmf");
-    if (resuming) xdmf_->resume_at(t);
+    mpi::collective_try(comm_, [&] {
+      if (!comm_.is_root()) return;
+      const double t = time_of(p_.step);
+      csv_ = resuming ? io::CsvSeries::resume_at(out_ / "discharge.csv", kColumns, t)
+                      : io::CsvSeries(out_ / "discharge.csv", kColumns);
+      xdmf_.emplace(out_ / "dam_break.xmf");
+      if (resuming) xdmf_->resume_at(t);
+    });
   }
 
   // Cell centres as a polyline (x, water surface) with depth, velocity and unit discharge.
@@ -294,7 +298,9 @@ class DamBreakRun {
     summary.set("front_position", ritter_.front_position(s_.t_end), "m");
     summary.set("max_balance_error", p_.max_balance_error);
     summary.set("cells", double(s_.cells));
-    if (comm_.is_root()) summary.write(out_ / "summary.json");
+    mpi::collective_try(comm_, [&] {
+      if (comm_.is_root()) summary.write(out_ / "summary.json");
+    });
     record_.write(out_ / "run.json", timers_, "completed");
     log_.info(
         "done: discharge at the dam {:.6g} m^3/s (Ritter: 8/27 sqrt(g) h0^1.5 x width), peak outflow {:.6g} m^3/s "
@@ -323,10 +329,11 @@ class DamBreakRun {
 int run_dam_break(const mpi::Comm& comm, const config::Config& scene, const DamBreakOptions& options, Logger& log) {
   const Scene s = read_scene(scene);
   DamBreakRun run(comm, s, options, log);
-  if (comm.is_root()) {
+  mpi::collective_try(comm, [&] {
+    if (!comm.is_root()) return;
     scene.write_effective(run.out() / "effective_config.yaml");
     log.add_file(run.out() / "log.txt");
-  }
+  });
   return run.run(options.restart);
 }
 

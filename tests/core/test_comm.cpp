@@ -31,3 +31,27 @@ TEST(Comm, DupAndSplitOwnTheirCommunicators) {
 }
 
 }  // namespace
+
+#include "core/mpi/collective_try.hpp"
+
+namespace {
+
+TEST(CollectiveTry, AnInputErrorOnOneRankReachesEveryRank) {
+  suite::mpi::Comm comm(MPI_COMM_WORLD);
+  const int last = comm.size() - 1;
+  std::string seen;
+  try {
+    suite::mpi::collective_try(comm, [&] {
+      if (comm.rank() == last) throw suite::InputError("cannot resume 'q.csv': its header differs");
+    });
+  } catch (const suite::InputError& e) {
+    seen = e.what();
+  }
+  EXPECT_NE(seen.find("cannot resume 'q.csv': its header differs"), std::string::npos) << seen;
+  if (last != 0) {
+    EXPECT_NE(seen.find("(seen on rank 1)"), std::string::npos) << seen;
+  }
+  EXPECT_NO_THROW(suite::mpi::collective_try(comm, [] {}));
+}
+
+}  // namespace

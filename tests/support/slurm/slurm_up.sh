@@ -83,8 +83,13 @@ NodeName=$NODE NodeAddr=127.0.0.1 $HW RealMemory=$MEM State=UNKNOWN
 PartitionName=debug Nodes=$NODE Default=YES MaxTime=INFINITE State=UP OverSubscribe=NO
 CONF
 
-slurmctld -f "$SLURM_CONF"
-slurmd -f "$SLURM_CONF" -N $NODE
+failed_start() {
+  echo "slurm_up: $1 did not start; its log ends with:"
+  tail -n 15 "$STATE/log/$1.log" 2>/dev/null
+  exit 1
+}
+slurmctld -f "$SLURM_CONF" || failed_start slurmctld
+slurmd -f "$SLURM_CONF" -N $NODE || failed_start slurmd
 st=""
 for _ in $(seq 150); do
   st=$(sinfo -h -N -o '%T' 2>/dev/null | head -1 || true)
