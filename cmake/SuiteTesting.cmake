@@ -17,7 +17,7 @@ endif()
 set(SUITE_TEST_ENV "GTEST_COLOR=no;OMPI_MCA_rmaps_base_oversubscribe=1")
 if(SUITE_SANITIZE)
   # Open MPI keeps allocations until exit by design; leak reports from it are not ours.
-  list(APPEND SUITE_TEST_ENV "ASAN_OPTIONS=detect_leaks=0")
+  list(APPEND SUITE_TEST_ENV "ASAN_OPTIONS=detect_leaks=0" "UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1")
 endif()
 
 function(suite_mpiexec_command out ranks)

@@ -133,7 +133,7 @@ void apply_override(State& s, const std::string& arg) {
       YAML::Node next = cur[seg];
       if (!next.IsDefined() || next.IsNull()) {
         cur[seg] = YAML::Node(YAML::NodeType::Map);
-        next = cur[seg];
+        next.reset(cur[seg]);
       }
       cur.reset(next);
     }
