@@ -2,6 +2,7 @@
 """Bandwidth of an HDF5 output step and of a checkpoint against data size, one line per rank
 count, from the CSV files of io_throughput. Usage: plot_io_throughput.py OUT.png CSV..."""
 import csv
+import re
 import sys
 
 import matplotlib
@@ -17,7 +18,7 @@ def main(png, files):
         with open(path) as f:
             first = f.readline().lstrip("# ").strip()
             rows = list(csv.DictReader(f))
-        title = title or first.split(", suite")[0]
+        title = title or re.sub(r"^io_throughput: |, \d+ ranks|, medians.*$", "", first)
         ranks = rows[0]["ranks"]
         mb = [float(r["bytes_total"]) / 1e6 for r in rows]
         ax.plot(mb, [float(r["step_MBps"]) for r in rows], "o-", label=f"output step, {ranks} ranks")
