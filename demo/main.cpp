@@ -6,6 +6,7 @@
 #include "core/cli/command_line.hpp"
 #include "core/config/config.hpp"
 #include "core/log/logger.hpp"
+#include "core/mpi/comm.hpp"
 #include "core/mpi/environment.hpp"
 #include "core/run/guarded_main.hpp"
 #include "demo/ritter/dam_break_run.hpp"
@@ -16,7 +17,7 @@ extern const char* const ritter_dam_break_yaml;
 
 int main(int argc, char** argv) {
   suite::mpi::Environment env(argc, argv);
-  const suite::mpi::Comm world = env.world();
+  const suite::mpi::Comm world(MPI_COMM_WORLD);
   return suite::guarded_main(world, [&] {
     const auto parsed = suite::cli::parse(
         {"suite-demo", "Suite demo: the default dam-break scene (Ritter's analytic solution) with the suite's outputs",

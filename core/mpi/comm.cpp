@@ -19,6 +19,7 @@ struct Comm::Owned {
 Comm::Comm(MPI_Comm raw) : Comm(raw, nullptr) {}
 
 Comm::Comm(MPI_Comm raw, std::shared_ptr<Owned> owner) : raw_(raw), owner_(std::move(owner)) {
+  SUITE_MPI_CHECK(MPI_Comm_set_errhandler(raw_, MPI_ERRORS_RETURN));
   SUITE_MPI_CHECK(MPI_Comm_rank(raw_, &rank_));
   SUITE_MPI_CHECK(MPI_Comm_size(raw_, &size_));
 }
@@ -26,14 +27,12 @@ Comm::Comm(MPI_Comm raw, std::shared_ptr<Owned> owner) : raw_(raw), owner_(std::
 Comm Comm::dup() const {
   MPI_Comm c = MPI_COMM_NULL;
   SUITE_MPI_CHECK(MPI_Comm_dup(raw_, &c));
-  SUITE_MPI_CHECK(MPI_Comm_set_errhandler(c, MPI_ERRORS_RETURN));
   return Comm(c, std::make_shared<Owned>(c));
 }
 
 Comm Comm::split(int color, int key) const {
   MPI_Comm c = MPI_COMM_NULL;
   SUITE_MPI_CHECK(MPI_Comm_split(raw_, color, key, &c));
-  SUITE_MPI_CHECK(MPI_Comm_set_errhandler(c, MPI_ERRORS_RETURN));
   return Comm(c, std::make_shared<Owned>(c));
 }
 

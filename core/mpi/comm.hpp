@@ -2,7 +2,9 @@
 // Comm: the communicator every library object takes explicitly.
 //
 // A Comm either borrows an MPI_Comm (the default) or owns one it created with dup()/split(),
-// which it frees when the last copy goes away. Every member that talks to other ranks is
+// which it frees when the last copy goes away. It switches its communicator to
+// MPI_ERRORS_RETURN: failures come back as codes and go through check_mpi (a LibraryError
+// naming the call) instead of aborting inside MPI. Every member that talks to other ranks is
 // marked COLLECTIVE: all ranks of the communicator must call it, in the same order.
 #include <mpi.h>
 

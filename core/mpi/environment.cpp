@@ -37,8 +37,6 @@ Environment::Environment(int& argc, char**& argv, ThreadLevel required) {
   } else {
     SUITE_MPI_CHECK(MPI_Init_thread(&argc, &argv, to_mpi(required), &provided));
     owns_ = true;
-    // Errors come back as codes and go through check_mpi instead of aborting inside MPI.
-    SUITE_MPI_CHECK(MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN));
   }
   provided_ = from_mpi(provided);
   if (provided < to_mpi(required)) {
@@ -51,10 +49,6 @@ Environment::~Environment() {
   int finalised = 0;
   MPI_Finalized(&finalised);
   if (!finalised) MPI_Finalize();
-}
-
-Comm Environment::world() const {
-  return Comm(MPI_COMM_WORLD);
 }
 
 }  // namespace suite::mpi

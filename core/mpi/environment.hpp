@@ -1,7 +1,6 @@
 #pragma once
-// MPI_Init/MPI_Finalize as an object owned by main. Nothing below main calls MPI_COMM_WORLD:
-// main takes `env.world()` and passes the Comm down explicitly.
-#include "core/mpi/comm.hpp"
+// MPI_Init/MPI_Finalize as an object owned by main. Nothing below main names the world
+// communicator: main wraps it in a Comm and passes that down explicitly (see demo/main.cpp).
 
 namespace suite::mpi {
 
@@ -18,8 +17,6 @@ class Environment {
   Environment& operator=(const Environment&) = delete;
 
   ThreadLevel provided() const { return provided_; }
-  // A non-owning Comm for MPI_COMM_WORLD; main duplicates or splits it as it needs.
-  Comm world() const;
 
  private:
   ThreadLevel provided_ = ThreadLevel::single;

@@ -131,7 +131,7 @@ class DamBreakRun {
       write_fields(0);
     }
     SignalWatcher signals;
-    ProgressLine progress(log_, 0.0, s_.t_end);
+    ProgressLine progress(log_, time_of(p_.step), s_.t_end);
     const long long first_step = p_.step;
     log_.info("Ritter dam break: h0 = {} m, c0 = {:.4f} m/s, {} cells on {} ranks, {} samples to t = {} s", s_.h0,
               ritter_.wave_speed(), s_.cells, comm_.size(), n_steps_, s_.t_end);
