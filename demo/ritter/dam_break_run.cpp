@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/checkpoint/checkpoint.hpp"
+#include "core/checkpoint/schedule.hpp"
 #include "core/errors.hpp"
 #include "core/io/csv_series.hpp"
 #include "core/io/h5_file.hpp"
@@ -34,7 +35,8 @@ struct Scene {
   double h0, reservoir_length, width, channel_length, gravity;
   long long cells;
   double t_end, sample, output;
-  long long max_steps, checkpoint_every, checkpoint_keep;
+  long long max_steps;
+  checkpoint::ScheduleSettings checkpoints;
 
   // The values a restart must share with the run that wrote the checkpoint.
   std::array<double, 8> physics() const {
@@ -58,9 +60,9 @@ Scene read_scene(const config::Config& cfg) {
   s.sample = time.quantity("sample", "s", Range::positive());
   s.output = time.quantity("output", "s", s.t_end, Range::positive());
   s.max_steps = time.integer("max_steps", 0, 0, std::numeric_limits<long long>::max());
+  const checkpoint::ScheduleSettings default_checkpoints{50, 1800.0, 2};
   const auto ck = root.optional_section("checkpoint");
-  s.checkpoint_every = ck ? ck->integer("every_steps", 50, 1, std::numeric_limits<long long>::max()) : 50;
-  s.checkpoint_keep = ck ? ck->integer("keep", 2, 1, 1000) : 2;
+  s.checkpoints = ck ? checkpoint::ScheduleSettings::read(*ck, default_checkpoints) : default_checkpoints;
   cfg.finish();
 
   const double wall_time = s.reservoir_length / std::sqrt(s.gravity * s.h0);
@@ -131,6 +133,7 @@ class DamBreakRun {
       write_fields(0);
     }
     SignalWatcher signals;
+    checkpoint::Schedule schedule(s_.checkpoints);
     ProgressLine progress(log_, time_of(p_.step), s_.t_end);
     const long long first_step = p_.step;
     log_.info("Ritter dam break: h0 = {} m, c0 = {:.4f} m/s, {} cells on {} ranks, {} samples to t = {} s", s_.h0,
@@ -141,7 +144,10 @@ class DamBreakRun {
       if (p_.step % output_every_ == 0 || p_.step == n_steps_) write_fields(p_.step);
       const SignalRequest req = signals.poll(comm_);
       const bool max_reached = s_.max_steps > 0 && p_.step - first_step >= s_.max_steps && p_.step < n_steps_;
-      if (req != SignalRequest::none || max_reached || p_.step % s_.checkpoint_every == 0) write_checkpoint();
+      if (schedule.due(comm_, p_.step, req) || max_reached) {
+        write_checkpoint();
+        schedule.written();
+      }
       if (req == SignalRequest::checkpoint_and_stop || max_reached) {
         const std::string why = max_reached ? fmt::format("time.max_steps = {}", s_.max_steps) : describe(req);
         log_.warn("stopped at step {} (t = {} s) on {}; continue with --restart latest", p_.step, time_of(p_.step),
@@ -253,7 +259,7 @@ class DamBreakRun {
     const std::array<long long, 2> range{block_.first, block_.count};
     w.write<long long>("block", range);
     w.commit();
-    if (comm_.is_root()) checkpoint::prune(checkpoints_, "checkpoint", static_cast<int>(s_.checkpoint_keep));
+    if (comm_.is_root()) checkpoint::prune(checkpoints_, "checkpoint", s_.checkpoints.keep);
     record_.write(out_ / "run.json", timers_, fmt::format("running: checkpoint at step {}", p_.step));
     log_.info("checkpoint {} written", path.filename().string());
   }
