@@ -57,10 +57,18 @@ void Writer::write_bytes(const std::string& name, std::span<const std::byte> loc
 }
 
 void Writer::commit() {
-  file_->close();
-  file_.reset();
-  comm_.barrier();  // every rank's data is in the file
+  // Closing flushes the last data and metadata; only a file every rank closed cleanly may
+  // replace the previous checkpoints.
   std::string problem;
+  try {
+    file_->close();
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  file_.reset();
+  if (!comm_.all(problem.empty()))
+    throw LibraryError(fmt::format("checkpoint '{}' was not written completely ({}); the previous checkpoints are kept",
+                                   path_.string(), problem.empty() ? "closing failed on another rank" : problem));
   if (comm_.is_root()) {
     try {
       io::fsync_path(tmp_);
@@ -166,6 +174,23 @@ std::optional<std::filesystem::path> latest(const std::filesystem::path& dir, co
   auto found = list(dir, prefix);
   if (found.empty()) return std::nullopt;
   return found.rbegin()->second;
+}
+
+std::optional<std::filesystem::path> latest(const mpi::Comm& comm, const std::filesystem::path& dir,
+                                            const std::string& prefix) {
+  std::string found;
+  if (comm.is_root()) found = latest(dir, prefix).value_or(std::filesystem::path()).string();
+  comm.broadcast(found, 0);
+  if (found.empty()) return std::nullopt;
+  return std::filesystem::path(found);
+}
+
+int discard_after(const std::filesystem::path& dir, const std::string& prefix, long long step) {
+  int removed = 0;
+  for (const auto& [s, path] : list(dir, prefix)) {
+    if (s > step) removed += std::filesystem::remove(path) ? 1 : 0;
+  }
+  return removed;
 }
 
 void prune(const std::filesystem::path& dir, const std::string& prefix, int keep) {

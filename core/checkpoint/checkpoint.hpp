@@ -83,7 +83,15 @@ class Reader {
 std::filesystem::path file_name(const std::filesystem::path& dir, const std::string& prefix, long long step);
 // The checkpoint with the highest step in `dir` ("<prefix>_*.h5", temporaries ignored).
 std::optional<std::filesystem::path> latest(const std::filesystem::path& dir, const std::string& prefix);
+// The same, looked up on rank 0 and broadcast, so every rank opens the same file. COLLECTIVE.
+std::optional<std::filesystem::path> latest(const mpi::Comm& comm, const std::filesystem::path& dir,
+                                            const std::string& prefix);
 // Deletes all but the newest `keep` checkpoints. Not collective: call on rank 0.
 void prune(const std::filesystem::path& dir, const std::string& prefix, int keep);
+// Deletes the checkpoints with a step above `step`: the future of a run that is being started
+// again (step = -1 for a fresh start, the restart step otherwise), so that they can neither
+// outrank the new run's checkpoints in prune() nor be taken by latest(). Returns how many.
+// Not collective: call on rank 0.
+int discard_after(const std::filesystem::path& dir, const std::string& prefix, long long step);
 
 }  // namespace suite::checkpoint

@@ -13,6 +13,7 @@
 #include "core/config/suggest.hpp"
 #include "core/config/units.hpp"
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 
 namespace suite::config {
 
@@ -40,8 +41,13 @@ std::string one_line(const YAML::Node& n) {
 
 // "file:line:col" of a node, or the override that set it.
 std::string location(const State& s, const std::string& path, const YAML::Mark& mark) {
-  if (auto it = s.overridden.find(path); it != s.overridden.end())
-    return fmt::format("command-line override '{}'", it->second);
+  // The key itself or a section above it may come from an override ("output={every: 5}").
+  for (std::string p = path; !p.empty();) {
+    if (auto it = s.overridden.find(p); it != s.overridden.end())
+      return fmt::format("command-line override '{}'", it->second);
+    const auto cut = p.find_last_of(".[");
+    p = cut == std::string::npos ? "" : p.substr(0, cut);
+  }
   if (mark.is_null()) return s.source;
   return fmt::format("{}:{}:{}", s.source, mark.line + 1, mark.column + 1);
 }
@@ -280,6 +286,11 @@ Section Section::section(const std::string& key) const {
   return Section(state_, std::make_shared<YAML::Node>(n), child_path(key));
 }
 
+Section Section::section_or_empty(const std::string& key) const {
+  if (!has(key)) store_default(key, YAML::Node(YAML::NodeType::Map));
+  return section(key);
+}
+
 std::optional<Section> Section::optional_section(const std::string& key) const {
   if (!has(key)) return std::nullopt;
   return section(key);
@@ -506,9 +517,7 @@ std::string Config::effective_yaml() const {
 }
 
 void Config::write_effective(const std::filesystem::path& path) const {
-  std::ofstream out(path);
-  if (!(out << effective_yaml()))
-    throw InputError(fmt::format("cannot write the effective configuration to '{}'", path.string()));
+  io::write_file_atomic(path, effective_yaml());
 }
 
 const std::string& Config::source_name() const {

@@ -52,6 +52,9 @@ class Section {
 
   Section section(const std::string& key) const;  // required mapping
   std::optional<Section> optional_section(const std::string& key) const;
+  // The section, or an empty one added to the tree if absent: defaults read from it then
+  // appear in the effective configuration.
+  Section section_or_empty(const std::string& key) const;
   std::vector<Section> sections(const std::string& key) const;  // required list of mappings
 
   // Plain values. T is one of bool, int, long long, double, std::string, std::vector<double>,

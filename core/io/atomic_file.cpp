@@ -12,18 +12,20 @@
 namespace suite::io {
 
 namespace {
-[[noreturn]] void fail(const char* what, const std::filesystem::path& p) {
-  throw LibraryError(fmt::format("{} '{}' failed: {}", what, p.string(), std::strerror(errno)));
+[[noreturn]] void fail(const char* what, const std::filesystem::path& p, int error) {
+  throw LibraryError(fmt::format("{} '{}' failed: {}", what, p.string(), std::strerror(error)));
 }
 }  // namespace
 
 void fsync_path(const std::filesystem::path& path) {
   const bool is_dir = std::filesystem::is_directory(path);
   const int fd = ::open(path.c_str(), is_dir ? O_RDONLY | O_DIRECTORY : O_RDONLY);
-  if (fd < 0) fail("open for fsync of", path);
+  if (fd < 0) fail("open for fsync of", path, errno);
   const int rc = ::fsync(fd);
+  const int error = errno;
   ::close(fd);
-  if (rc != 0 && !(is_dir && errno == EINVAL)) fail("fsync of", path);
+  // Some file systems cannot fsync a folder (EINVAL); the rename is then as durable as they allow.
+  if (rc != 0 && !(is_dir && error == EINVAL)) fail("fsync of", path, error);
 }
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
@@ -33,24 +35,33 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
     throw InputError(fmt::format("cannot write '{}': {}; check that the folder exists and is writable", path.string(),
                                  std::strerror(errno)));
   }
+  auto give_up = [&](const char* what) {
+    const int error = errno;
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    fail(what, tmp, error);
+  };
   std::size_t done = 0;
   while (done < content.size()) {
     const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
     if (n < 0) {
       if (errno == EINTR) continue;
-      ::close(fd);
-      fail("write of", tmp);
+      give_up("write of");
     }
     done += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0) {
-    ::close(fd);
-    fail("fsync of", tmp);
+  if (::fsync(fd) != 0) give_up("fsync of");
+  if (::close(fd) != 0) {
+    const int error = errno;
+    ::unlink(tmp.c_str());
+    fail("close of", tmp, error);
   }
-  ::close(fd);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) fail("rename to", path);
-  const auto dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  fsync_path(dir);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int error = errno;
+    ::unlink(tmp.c_str());
+    fail("rename to", path, error);
+  }
+  fsync_path(path.has_parent_path() ? path.parent_path() : std::filesystem::path("."));
 }
 
 }  // namespace suite::io

@@ -34,6 +34,10 @@ std::string header_of(const std::vector<CsvColumn>& columns) {
   }
   return h;
 }
+// 12 significant digits: readable, and far below the precision of any measured quantity.
+std::string format_value(double v) {
+  return fmt::format("{:.12g}", v);
+}
 }  // namespace
 
 std::string CsvSeries::header() const {
@@ -46,6 +50,11 @@ CsvSeries CsvSeries::resume_at(std::filesystem::path path, std::vector<CsvColumn
   std::string line, kept;
   std::getline(in, line);
   const std::string expected = header_of(columns);
+  // Rows hold times as append() printed them; compare against t printed the same way, so the
+  // row written at t itself is kept whichever way its last digit was rounded.
+  double t_as_written = 0;
+  const std::string t_text = format_value(t);
+  std::from_chars(t_text.data(), t_text.data() + t_text.size(), t_as_written);
   if (line != expected) {
     throw InputError(
         fmt::format("cannot resume '{}': its header '{}' differs from '{}'; it belongs to another "
@@ -61,7 +70,7 @@ CsvSeries CsvSeries::resume_at(std::filesystem::path path, std::vector<CsvColumn
     if (std::from_chars(line.data(), last, time).ptr != last)
       throw InputError(
           fmt::format("cannot resume '{}': line {} does not start with a time ('{}')", path.string(), number, line));
-    if (time <= t) kept += line + '\n';
+    if (time <= t_as_written) kept += line + '\n';
   }
   in.close();
   write_file_atomic(path, kept);
@@ -73,9 +82,13 @@ void CsvSeries::append(std::span<const double> row) {
     throw LibraryError(
         fmt::format("CSV '{}': a row of {} values for {} columns", path_.string(), row.size(), columns_.size()));
   std::string s;
-  for (std::size_t i = 0; i < row.size(); ++i) s += fmt::format("{}{:.12g}", i ? "," : "", row[i]);
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    if (i) s += ',';
+    s += format_value(row[i]);
+  }
   out_ << s << '\n';
   out_.flush();
+  if (!out_) throw LibraryError(fmt::format("writing a row to '{}' failed (disk full?)", path_.string()));
 }
 
 }  // namespace suite::io

@@ -67,15 +67,17 @@ H5File::H5File(const mpi::Comm& comm, const std::filesystem::path& path, Mode mo
 }
 
 H5File::~H5File() {
-  close();
+  if (file_ >= 0) H5Fclose(file_);
 }
 
 void H5File::close() {
-  if (file_ >= 0) {
-    H5Fflush(file_, H5F_SCOPE_GLOBAL);
-    H5Fclose(file_);
-    file_ = -1;
-  }
+  if (file_ < 0) return;
+  const hid_t f = file_;
+  file_ = -1;
+  const herr_t flushed = H5Fflush(f, H5F_SCOPE_GLOBAL);
+  const herr_t closed = H5Fclose(f);
+  SUITE_H5_CHECK(flushed);
+  SUITE_H5_CHECK(closed);
 }
 
 hid_t H5File::dataset_for_write(const std::string& name, hid_t type, const std::vector<hsize_t>& dims) {

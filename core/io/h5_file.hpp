@@ -65,7 +65,8 @@ class H5File {
   long long get_attribute_int(const std::string& object, const std::string& attr);
   std::string get_attribute_string(const std::string& object, const std::string& attr);
 
-  // Flushes and closes now (the destructor does it otherwise).
+  // Flushes and closes now; throws LibraryError if HDF5 reports a failure (e.g. a full disk).
+  // The destructor closes too, ignoring errors.
   void close();
 
  private:

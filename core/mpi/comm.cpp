@@ -89,6 +89,30 @@ std::vector<double> Comm::all_gather(double v) const {
   return out;
 }
 
+std::vector<std::string> Comm::all_gather(const std::string& s) const {
+  const int n = static_cast<int>(s.size());
+  std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(static_cast<std::size_t>(size_));
+  SUITE_MPI_CHECK(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, raw_));
+  int total = 0;
+  for (int r = 0; r < size_; ++r) {
+    offsets[static_cast<std::size_t>(r)] = total;
+    total += counts[static_cast<std::size_t>(r)];
+  }
+  std::string all(static_cast<std::size_t>(total), '\0');
+  SUITE_MPI_CHECK(MPI_Allgatherv(s.data(), n, MPI_CHAR, all.data(), counts.data(), offsets.data(), MPI_CHAR, raw_));
+  std::vector<std::string> out;
+  for (int r = 0; r < size_; ++r)
+    out.push_back(all.substr(static_cast<std::size_t>(offsets[static_cast<std::size_t>(r)]),
+                             static_cast<std::size_t>(counts[static_cast<std::size_t>(r)])));
+  return out;
+}
+
+void Comm::all_reduce(std::span<double> values, Reduction op) const {
+  const MPI_Op mpi_op = op == Reduction::sum ? MPI_SUM : (op == Reduction::min ? MPI_MIN : MPI_MAX);
+  SUITE_MPI_CHECK(
+      MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, mpi_op, raw_));
+}
+
 void Comm::broadcast(std::string& s, int root) const {
   long long n = static_cast<long long>(s.size());
   SUITE_MPI_CHECK(MPI_Bcast(&n, 1, MPI_LONG_LONG, root, raw_));

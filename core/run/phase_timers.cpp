@@ -1,6 +1,7 @@
 #include "core/run/phase_timers.hpp"
 
 #include <nlohmann/json.hpp>
+#include <set>
 
 namespace suite {
 
@@ -16,31 +17,35 @@ double PhaseTimers::seconds(const std::string& phase) const {
 }
 
 nlohmann::json PhaseTimers::reduce_to_json(const mpi::Comm& comm) const {
-  // Ranks may have seen different phases: agree on the union of names first (rank 0's list,
-  // extended by every other rank's, broadcast as one newline-separated string).
-  std::string names;
-  for (const auto& [name, t] : totals_) names += name + '\n';
-  std::string all;
-  for (int r = 0; r < comm.size(); ++r) {
-    std::string mine = names;
-    comm.broadcast(mine, r);
-    all += mine;
+  // Ranks may have seen different phases: agree on the union of the names (one gather), then
+  // reduce all phases at once (four reductions, whatever the number of phases).
+  std::string mine;
+  for (const auto& [name, t] : totals_) mine += name + '\n';
+  std::set<std::string> names;
+  for (const auto& list : comm.all_gather(mine)) {
+    for (std::size_t start = 0, nl; (nl = list.find('\n', start)) != std::string::npos; start = nl + 1)
+      names.insert(list.substr(start, nl - start));
   }
-  std::map<std::string, int> union_names;
-  std::size_t start = 0;
-  for (std::size_t nl = all.find('\n'); nl != std::string::npos; nl = all.find('\n', start)) {
-    union_names[all.substr(start, nl - start)] = 1;
-    start = nl + 1;
-  }
-  nlohmann::json out = nlohmann::json::object();
-  for (const auto& [name, unused] : union_names) {
+  std::vector<double> sum, min, max, calls;
+  for (const auto& name : names) {
     auto it = totals_.find(name);
     const double s = it == totals_.end() ? 0.0 : it->second.seconds;
-    const long long calls = it == totals_.end() ? 0 : it->second.calls;
-    out[name] = {{"calls", comm.max(calls)},
-                 {"min_s", comm.min(s)},
-                 {"mean_s", comm.sum(s) / comm.size()},
-                 {"max_s", comm.max(s)}};
+    sum.push_back(s);
+    calls.push_back(it == totals_.end() ? 0.0 : double(it->second.calls));
+  }
+  min = max = sum;
+  comm.all_reduce(sum, mpi::Comm::Reduction::sum);
+  comm.all_reduce(min, mpi::Comm::Reduction::min);
+  comm.all_reduce(max, mpi::Comm::Reduction::max);
+  comm.all_reduce(calls, mpi::Comm::Reduction::max);
+  nlohmann::json out = nlohmann::json::object();
+  std::size_t i = 0;
+  for (const auto& name : names) {
+    out[name] = {{"calls", static_cast<long long>(calls[i])},
+                 {"min_s", min[i]},
+                 {"mean_s", sum[i] / comm.size()},
+                 {"max_s", max[i]}};
+    ++i;
   }
   return out;
 }

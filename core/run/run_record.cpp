@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/mpi/collective_try.hpp"
 #include "core/run/build_info.hpp"
 
 namespace suite {
@@ -69,7 +70,9 @@ nlohmann::json RunRecord::to_json(const PhaseTimers& timers, const std::string& 
 
 void RunRecord::write(const std::filesystem::path& path, const PhaseTimers& timers, const std::string& status) const {
   const nlohmann::json j = to_json(timers, status);
-  if (comm_.is_root()) write_json_atomic(path, j);
+  mpi::collective_try(comm_, [&] {
+    if (comm_.is_root()) write_json_atomic(path, j);
+  });
 }
 
 void Summary::set(const std::string& key, double value, const std::string& unit) {

@@ -60,9 +60,7 @@ Scene read_scene(const config::Config& cfg) {
   s.sample = time.quantity("sample", "s", Range::positive());
   s.output = time.quantity("output", "s", s.t_end, Range::positive());
   s.max_steps = time.integer("max_steps", 0, 0, std::numeric_limits<long long>::max());
-  const checkpoint::ScheduleSettings default_checkpoints{50, 1800.0, 2};
-  const auto ck = root.optional_section("checkpoint");
-  s.checkpoints = ck ? checkpoint::ScheduleSettings::read(*ck, default_checkpoints) : default_checkpoints;
+  s.checkpoints = checkpoint::ScheduleSettings::read(root.section_or_empty("checkpoint"), {50, 1800.0, 2});
   cfg.finish();
 
   const double wall_time = s.reservoir_length / std::sqrt(s.gravity * s.h0);
@@ -129,6 +127,7 @@ class DamBreakRun {
     if (restart) {
       resume(*restart);
     } else {
+      discard_checkpoints_after(-1);  // a fresh start: checkpoints of an earlier run are stale
       start_outputs(false);
       write_fields(0);
     }
@@ -264,10 +263,17 @@ class DamBreakRun {
     log_.info("checkpoint {} written", path.filename().string());
   }
 
+  void discard_checkpoints_after(long long step) {
+    int removed = 0;
+    if (comm_.is_root()) removed = checkpoint::discard_after(checkpoints_, "checkpoint", step);
+    if (removed > 0)
+      log_.warn("removed {} checkpoint(s) after step {} left by an earlier run", removed, std::max(step, 0LL));
+  }
+
   void resume(const std::string& which) {
     std::filesystem::path path = which;
     if (which == "latest") {
-      const auto found = checkpoint::latest(checkpoints_, "checkpoint");
+      const auto found = checkpoint::latest(comm_, checkpoints_, "checkpoint");
       if (!found)
         throw InputError(
             fmt::format("--restart latest: no checkpoint in '{}'; run without --restart to start from t = 0",
@@ -290,6 +296,7 @@ class DamBreakRun {
     if (range != std::vector<long long>{block_.first, block_.count})
       throw LibraryError("checkpoint block layout differs from this run's");
     record_.extra()["restarted_from"] = path.string();
+    discard_checkpoints_after(p_.step);  // later ones belong to the run being replaced
     log_.info("restarting from {} at step {} (t = {} s)", path.filename().string(), p_.step, time_of(p_.step));
     start_outputs(true);
   }

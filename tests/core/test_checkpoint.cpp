@@ -100,6 +100,33 @@ TEST(Checkpoint, PruneKeepsTheNewest) {
   EXPECT_EQ(ckpt::latest(dir, "chk").value(), ckpt::file_name(dir, "chk", 25));
 }
 
+TEST(Checkpoint, StaleCheckpointsOfAnEarlierRunAreDiscarded) {
+  // An earlier run left steps 100 and 150; a new run restarting from step 50 must not have its
+  // own checkpoints pruned in favour of them, nor see them as the latest.
+  suite::mpi::Comm comm(MPI_COMM_WORLD);
+  const auto dir = suite::testing::scratch_dir(comm);
+  for (long long s : {50, 100, 150}) {
+    ckpt::Writer w(comm, ckpt::file_name(dir, "checkpoint", s), header(s));
+    w.commit();
+  }
+  EXPECT_EQ(ckpt::latest(comm, dir, "checkpoint").value(), ckpt::file_name(dir, "checkpoint", 150));
+  int removed = 0;
+  if (comm.is_root()) removed = ckpt::discard_after(dir, "checkpoint", 50);
+  comm.barrier();
+  EXPECT_EQ(comm.sum(static_cast<long long>(removed)), 2);
+  EXPECT_EQ(ckpt::latest(comm, dir, "checkpoint").value(), ckpt::file_name(dir, "checkpoint", 50));
+  {
+    ckpt::Writer w(comm, ckpt::file_name(dir, "checkpoint", 60), header(60));
+    w.commit();
+  }
+  if (comm.is_root()) ckpt::prune(dir, "checkpoint", 1);
+  comm.barrier();
+  EXPECT_EQ(ckpt::latest(comm, dir, "checkpoint").value(), ckpt::file_name(dir, "checkpoint", 60));
+  if (comm.is_root()) ckpt::discard_after(dir, "checkpoint", -1);  // a fresh start
+  comm.barrier();
+  EXPECT_FALSE(ckpt::latest(comm, dir, "checkpoint").has_value());
+}
+
 TEST(Checkpoint, RefusesOtherSolverFormatOrVersion) {
   suite::mpi::Comm comm(MPI_COMM_WORLD);
   const auto dir = suite::testing::scratch_dir(comm);

@@ -133,6 +133,24 @@ TEST(Config, OverridesReplaceAndAddValuesAndAreNamedInErrors) {
   EXPECT_NE(range.find("command-line override 'steps=-1'"), std::string::npos) << range;
 }
 
+TEST(Config, KeysInsideAMapValuedOverrideNameTheOverride) {
+  auto cfg = Config::from_string("steps: 1\n", "m.yaml", {"output={every: 5, evry_s: 1}"});
+  cfg.root().get<long long>("steps");
+  cfg.root().section("output").get<long long>("every");
+  const std::string msg = input_error_of([&] { cfg.finish(); });
+  EXPECT_NE(msg.find("command-line override 'output={every: 5, evry_s: 1}': unknown key 'output.evry_s'"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(Config, DefaultsOfAnAbsentSectionAppearInTheEffectiveConfiguration) {
+  auto cfg = Config::from_string("steps: 1\n", "e.yaml");
+  cfg.root().get<long long>("steps");
+  EXPECT_EQ(cfg.root().section_or_empty("checkpoint").get<long long>("keep", 2), 2);
+  EXPECT_NE(cfg.effective_yaml().find("checkpoint:\n  keep: 2"), std::string::npos) << cfg.effective_yaml();
+  EXPECT_NO_THROW(cfg.finish());
+}
+
 TEST(Config, MalformedOverridesAreRejected) {
   EXPECT_NE(input_error_of([] { scene({"steps="}); }).find("has no value"), std::string::npos);
   EXPECT_NE(input_error_of([] { scene({"name.x=3"}); }).find("'name' holds a value, not a section"), std::string::npos);

@@ -41,4 +41,18 @@ TEST(CsvSeries, ResumeDropsRowsAfterTheRestartTime) {
   EXPECT_NE(msg.find("differs from 'time [h],q [m^3/s]'"), std::string::npos) << msg;
 }
 
+TEST(CsvSeries, ResumeKeepsTheRowAtTheRestartTimeWhateverItsRounding) {
+  // 3 * 0.3 = 0.8999999999999999 in binary; printed with 12 digits it reads back as 0.9,
+  // which is larger. The row written at the restart time must survive the resume.
+  const auto dir = suite::testing::scratch_dir(suite::mpi::Comm());
+  const std::vector<suite::io::CsvColumn> cols{{"time", "s"}};
+  {
+    suite::io::CsvSeries csv(dir / "t.csv", cols);
+    for (int i = 0; i <= 5; ++i) csv.append({i * 0.3});
+  }
+  ASSERT_LT(3 * 0.3, 0.9);
+  suite::io::CsvSeries::resume_at(dir / "t.csv", cols, 3 * 0.3);
+  EXPECT_EQ(read(dir / "t.csv"), "time [s]\n0\n0.3\n0.6\n0.9\n");
+}
+
 }  // namespace

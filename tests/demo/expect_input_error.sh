@@ -17,6 +17,9 @@ else
   lines=$(grep -c . "$err")
 fi
 [ "$lines" = 1 ] || { echo "expected one error line, got $lines"; exit 1; }
+if grep -qE "internal error|terminate called|what\(\)|Segmentation fault|MPI_ABORT was invoked" "$err"; then
+  echo "the program crashed or aborted instead of reporting the mistake"; exit 1
+fi
 for p in "${patterns[@]}"; do
   grep -qF -- "$p" "$err" || { echo "stderr lacks: $p"; exit 1; }
 done

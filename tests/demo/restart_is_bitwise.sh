@@ -11,6 +11,9 @@ shift
 exe=$1
 rm -rf "$work" && mkdir -p "$work"
 "${launcher[@]}" "$exe" --out "$work/straight" --log-level warn
+# The folder first holds a finished run of another scene: its checkpoints (steps 100, 150) are
+# stale for the runs below and must neither be pruned in favour of nor restarted from.
+"${launcher[@]}" "$exe" --out "$work/pieces" --log-level warn cells=1000
 "${launcher[@]}" "$exe" --out "$work/pieces" --log-level warn time.max_steps=37
 grep -q '"status": "stopped: time.max_steps = 37"' "$work/pieces/run.json"
 "${launcher[@]}" "$exe" --out "$work/pieces" --log-level warn --restart latest time.max_steps=50

@@ -34,7 +34,9 @@ if ! munge -n </dev/null 2>/dev/null | unmunge >/dev/null 2>&1; then
   for _ in $(seq 50); do munge -n </dev/null 2>/dev/null | unmunge >/dev/null 2>&1 && break; sleep 0.1; done
   touch "$STATE/munged.started-here"
 fi
-munge -n </dev/null | unmunge | grep -q 'STATUS: *Success' || { echo "slurm_up: munge does not work"; exit 1; }
+# Capture first, then test: `grep -q` stopping early would SIGPIPE the writer under pipefail.
+check=$(munge -n </dev/null | unmunge 2>&1 || true)
+grep -q 'STATUS: *Success' <<<"$check" || { echo "slurm_up: munge does not work: $check"; exit 1; }
 
 # --- already up? -----------------------------------------------------------------------
 if [ -f "$STATE/slurm.conf" ] && scontrol ping 2>/dev/null | grep -q 'is UP'; then
@@ -43,7 +45,8 @@ fi
 
 # --- slurm.conf: this machine's topology; 90% of its memory (more makes the node INVAL) ---
 NODE=localhost
-HW=$(slurmd -C | head -1 | sed -e 's/^NodeName=[^ ]* //' -e 's/RealMemory=[0-9]*//' -e 's/UpTime=.*//')
+HW=$(slurmd -C)
+HW=$(sed -n -e '1{s/^NodeName=[^ ]* //' -e 's/RealMemory=[0-9]*//' -e 's/UpTime=.*//' -e 'p}' <<<"$HW")
 MEM=$(( $(awk '/MemTotal/{print int($2/1024)}' /proc/meminfo) * 9 / 10 ))
 mkdir -p "$STATE/spool/ctld" "$STATE/spool/d" "$STATE/log"
 rm -rf "$STATE"/spool/ctld/* "$STATE"/spool/d/*   # fresh state: no stale DRAIN or jobs
