@@ -28,7 +28,8 @@ std::optional<std::string> closest_match(std::string_view word, const std::vecto
     for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return out;
   };
-  const std::size_t limit = std::max<std::size_t>(1, word.size() / 3);
+  // One edit for short words; for longer ones two, or a third of the length.
+  const std::size_t limit = word.size() < 4 ? 1 : std::max<std::size_t>(2, word.size() / 3);
   std::optional<std::string> best;
   std::size_t best_d = limit + 1;
   for (const auto& c : candidates) {

@@ -11,7 +11,7 @@ namespace suite {
 std::size_t edit_distance(std::string_view a, std::string_view b);
 
 // The candidate closest to `word`, if it is close enough to be a plausible typo:
-// distance <= max(1, |word| / 3), or a case-insensitive match.
+// distance <= 1 for words under 4 letters, else <= max(2, |word| / 3); or a case-insensitive match.
 std::optional<std::string> closest_match(std::string_view word, const std::vector<std::string>& candidates);
 
 // "a, b, c" for messages.

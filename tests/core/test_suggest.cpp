@@ -16,6 +16,8 @@ TEST(Suggest, OnlyPlausibleTyposAreSuggested) {
   EXPECT_EQ(suite::closest_match("cohesoin", keys).value_or(""), "cohesion");
   EXPECT_EQ(suite::closest_match("Density", keys).value_or(""), "density");
   EXPECT_FALSE(suite::closest_match("gravity", keys).has_value());
+  EXPECT_EQ(suite::closest_match("sinus", {"table", "sine"}).value_or(""), "sine");
+  EXPECT_FALSE(suite::closest_match("ab", {"xy"}).has_value()) << "short words: one edit at most";
 }
 
 }  // namespace

@@ -1,0 +1,128 @@
+#include "solvers/breach/hydrology/hydrograph.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/errors.hpp"
+
+namespace suite::breach {
+
+namespace {
+// The piecewise-linear function through (t, q), held constant outside [t.front(), t.back()].
+double interpolate(const std::vector<double>& t, const std::vector<double>& q, double x) {
+  if (x <= t.front()) return q.front();
+  if (x >= t.back()) return q.back();
+  const auto i = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
+  const double w = (x - t[i - 1]) / (t[i] - t[i - 1]);
+  return q[i - 1] + w * (q[i] - q[i - 1]);
+}
+
+// Its exact integral over [a, b]: the trapezoid rule between consecutive kinks.
+double linear_integral(const std::vector<double>& t, const std::vector<double>& q, double a, double b) {
+  std::vector<double> xs{a};
+  for (double x : t)
+    if (x > a && x < b) xs.push_back(x);
+  xs.push_back(b);
+  double sum = 0.0;
+  for (std::size_t i = 1; i < xs.size(); ++i)
+    sum += 0.5 * (interpolate(t, q, xs[i - 1]) + interpolate(t, q, xs[i])) * (xs[i] - xs[i - 1]);
+  return sum;
+}
+}  // namespace
+
+Hydrograph Hydrograph::table(std::vector<double> times, std::vector<double> discharges) {
+  if (times.empty() || times.size() != discharges.size())
+    throw InputError("an inflow table needs at least one row of [time, discharge]");
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    if (i > 0 && !(times[i] > times[i - 1]))
+      throw InputError(
+          fmt::format("inflow table: times must increase, but row {} ({} s) does not come after row {} ({} s)", i + 1,
+                      times[i], i, times[i - 1]));
+    if (discharges[i] < 0)
+      throw InputError(fmt::format("inflow table: row {} has a negative discharge ({} m^3/s)", i + 1, discharges[i]));
+  }
+  Hydrograph h;
+  h.kind_ = Kind::table;
+  h.times_ = std::move(times);
+  h.values_ = std::move(discharges);
+  return h;
+}
+
+Hydrograph Hydrograph::constant(double discharge) {
+  Hydrograph h;
+  h.kind_ = Kind::constant;
+  h.peak_ = discharge;
+  return h;
+}
+
+Hydrograph Hydrograph::sine(double peak, double period) {
+  Hydrograph h;
+  h.kind_ = Kind::sine;
+  h.peak_ = peak;
+  h.period_ = period;
+  return h;
+}
+
+Hydrograph Hydrograph::triangular(double peak, double base, double time_to_peak, double duration) {
+  Hydrograph h = table({0.0, time_to_peak, duration}, {base, peak, base});
+  h.kind_ = Kind::triangular;
+  return h;
+}
+
+Hydrograph Hydrograph::read(const config::Section& s) {
+  using config::Range;
+  const std::string type = s.choice("type", {"table", "constant", "sine", "triangular"});
+  if (type == "table") {
+    const auto rows = s.table("table", {"s", "m^3/s"});
+    std::vector<double> t, q;
+    for (const auto& r : rows) t.push_back(r[0]), q.push_back(r[1]);
+    try {
+      return table(std::move(t), std::move(q));
+    } catch (const InputError& e) {
+      s.reject("table", e.what());
+    }
+  }
+  if (type == "constant") return constant(s.quantity("discharge", "m^3/s", Range::at_least(0)));
+  if (type == "sine") {
+    return sine(s.quantity("peak", "m^3/s", Range::at_least(0)), s.quantity("period", "s", 10.0, Range::positive()));
+  }
+  const double peak = s.quantity("peak", "m^3/s", Range::at_least(0));
+  const double base = s.quantity("base", "m^3/s", 0.0, Range::between(0, peak));
+  const double tp = s.quantity("time_to_peak", "s", Range::positive());
+  const double duration = s.quantity("duration", "s", Range::positive());
+  if (duration <= tp) s.reject("duration", fmt::format("must be longer than time_to_peak ({} s)", tp));
+  return triangular(peak, base, tp, duration);
+}
+
+double Hydrograph::operator()(double t) const {
+  switch (kind_) {
+    case Kind::constant:
+      return peak_;
+    case Kind::sine:
+      return peak_ * (0.5 + 0.5 * std::sin(2.0 * std::numbers::pi * t / period_));
+    case Kind::table:
+    case Kind::triangular:
+      return interpolate(times_, values_, t);
+  }
+  return 0.0;
+}
+
+double Hydrograph::volume(double t0, double t1) const {
+  switch (kind_) {
+    case Kind::constant:
+      return peak_ * (t1 - t0);
+    case Kind::sine: {
+      const double w = 2.0 * std::numbers::pi / period_;
+      return peak_ * (0.5 * (t1 - t0) - 0.5 / w * (std::cos(w * t1) - std::cos(w * t0)));
+    }
+    case Kind::table:
+    case Kind::triangular:
+      return linear_integral(times_, values_, t0, t1);
+  }
+  return 0.0;
+}
+
+}  // namespace suite::breach

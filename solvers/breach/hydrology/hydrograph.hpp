@@ -1,0 +1,47 @@
+#pragma once
+// Inflow hydrographs Q_in(t) for reservoir routing. Time in s, discharge in m^3/s.
+//
+//   table:      linear interpolation between (time, discharge) points; before the first point
+//               the first discharge, after the last the last (WinDAM users give hours and cfs)
+//   constant:   Q(t) = peak
+//   sine:       Q(t) = peak (0.5 + 0.5 sin(2 pi t / period)), the dissertation's inlet law
+//               f = 0.5 + 0.5 sin(0.2 pi t) with period 10 s (Table 3.2, flow f1)
+//   triangular: a storm rising linearly from `base` at t = 0 to `peak` at `time_to_peak`,
+//               falling linearly back to `base` at `duration`, then `base`
+// Scene form (section `inflow`):
+//   type: table                          type: triangular
+//   table: [[0 h, 0 cfs], [2 h, 1200 cfs]]   peak: 1200 cfs, base: 0 cfs, time_to_peak: 2 h, duration: 8 h
+#include <string>
+#include <vector>
+
+#include "core/config/config.hpp"
+
+namespace suite::breach {
+
+class Hydrograph {
+ public:
+  enum class Kind { table, constant, sine, triangular };
+
+  static Hydrograph table(std::vector<double> times, std::vector<double> discharges);  // InputError if bad
+  static Hydrograph constant(double discharge);
+  static Hydrograph sine(double peak, double period);
+  static Hydrograph triangular(double peak, double base, double time_to_peak, double duration);
+  // Reads the `inflow` section described above; InputError names the key.
+  static Hydrograph read(const config::Section& section);
+
+  double operator()(double t) const;  // m^3/s
+  // Exact volume between t0 and t1 (m^3): piecewise-linear and sine forms integrate in closed
+  // form, so the reservoir mass balance can be checked to round-off.
+  double volume(double t0, double t1) const;
+  // Times where the hydrograph has a kink (table points, triangle corners): an adaptive
+  // integrator should step onto them rather than across.
+  const std::vector<double>& breakpoints() const { return times_; }
+  Kind kind() const { return kind_; }
+
+ private:
+  Kind kind_ = Kind::constant;
+  std::vector<double> times_, values_;  // table and triangular (as a table)
+  double peak_ = 0.0, period_ = 0.0;
+};
+
+}  // namespace suite::breach
