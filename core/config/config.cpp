@@ -244,12 +244,6 @@ bool Section::has(const std::string& key) const {
   return n.IsDefined() && !n.IsNull();
 }
 
-std::vector<std::string> Section::keys() const {
-  std::vector<std::string> out;
-  for (const auto& kv : *node_) out.push_back(kv.first.Scalar());
-  return out;
-}
-
 void Section::store_default(const std::string& key, const YAML::Node& value) const {
   (*node_)[key] = value;
 }

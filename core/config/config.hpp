@@ -48,7 +48,6 @@ class Section {
  public:
   const std::string& path() const { return path_; }
   bool has(const std::string& key) const;
-  std::vector<std::string> keys() const;
 
   Section section(const std::string& key) const;  // required mapping
   std::optional<Section> optional_section(const std::string& key) const;

@@ -26,8 +26,6 @@ class CsvTable {
   std::vector<double> numbers(const std::string& column) const;
   // The first row whose `column` holds `value`; InputError listing the values there are if none.
   std::size_t find_row(const std::string& column, const std::string& value) const;
-  // File line of a data row (1-based), for messages.
-  int line_of(std::size_t row) const { return lines_.at(row); }
 
  private:
   std::string source_;

@@ -83,12 +83,6 @@ std::vector<long long> Comm::all_gather(long long v) const {
   return out;
 }
 
-std::vector<double> Comm::all_gather(double v) const {
-  std::vector<double> out(static_cast<std::size_t>(size_));
-  SUITE_MPI_CHECK(MPI_Allgather(&v, 1, MPI_DOUBLE, out.data(), 1, MPI_DOUBLE, raw_));
-  return out;
-}
-
 std::vector<std::string> Comm::all_gather(const std::string& s) const {
   const int n = static_cast<int>(s.size());
   std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(static_cast<std::size_t>(size_));
@@ -118,10 +112,6 @@ void Comm::broadcast(std::string& s, int root) const {
   SUITE_MPI_CHECK(MPI_Bcast(&n, 1, MPI_LONG_LONG, root, raw_));
   s.resize(static_cast<std::size_t>(n));
   SUITE_MPI_CHECK(MPI_Bcast(s.data(), static_cast<int>(n), MPI_CHAR, root, raw_));
-}
-
-void Comm::broadcast(std::span<double> v, int root) const {
-  SUITE_MPI_CHECK(MPI_Bcast(v.data(), static_cast<int>(v.size()), MPI_DOUBLE, root, raw_));
 }
 
 }  // namespace suite::mpi

@@ -42,14 +42,12 @@ class Comm {
   long long exclusive_prefix_sum(long long v) const;
   // Every rank's value, gathered to every rank. COLLECTIVE.
   std::vector<long long> all_gather(long long v) const;
-  std::vector<double> all_gather(double v) const;
   std::vector<std::string> all_gather(const std::string& s) const;
   // Element-wise reduction of equally long arrays, result on every rank. COLLECTIVE.
   enum class Reduction { sum, min, max };
   void all_reduce(std::span<double> values, Reduction op) const;
   // Broadcast from `root`; on other ranks the argument is overwritten. COLLECTIVE.
   void broadcast(std::string& s, int root = 0) const;
-  void broadcast(std::span<double> v, int root = 0) const;
 
  private:
   struct Owned;

@@ -45,10 +45,6 @@ SignalWatcher::~SignalWatcher() {
   g_installed = false;
 }
 
-SignalRequest SignalWatcher::pending() const {
-  return static_cast<SignalRequest>(g_request.load());
-}
-
 int SignalWatcher::last_signal() const {
   return g_signal.load();
 }

@@ -25,8 +25,6 @@ class SignalWatcher {
 
   // The strongest request seen on any rank since the last poll; clears it. COLLECTIVE.
   SignalRequest poll(const mpi::Comm& comm);
-  // This rank's pending request, without communicating or clearing.
-  SignalRequest pending() const;
   // The last signal number received (0 if none), for the log.
   int last_signal() const;
 };

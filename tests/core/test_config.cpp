@@ -110,6 +110,14 @@ TEST(Config, MissingRequiredKeyPointsAtItsMisspelling) {
       << msg;
 }
 
+TEST(Config, OptionalSectionsAreAbsentOrRead) {
+  auto cfg = Config::from_string("petsc_off: 1\noutput: {every: 3}\n", "o.yaml");
+  EXPECT_FALSE(cfg.root().optional_section("restart").has_value());
+  EXPECT_EQ(cfg.root().optional_section("output")->get<long long>("every"), 3);
+  cfg.root().get<long long>("petsc_off");
+  EXPECT_NO_THROW(cfg.finish());
+}
+
 TEST(Config, ChoiceSuggestsTheClosestValidValue) {
   auto cfg = Config::from_string("walls: stiky\n", "c.yaml");
   const std::string msg = input_error_of([&] { cfg.root().choice("walls", {"slip", "sticky", "friction"}); });
