@@ -11,26 +11,21 @@
 namespace suite::breach {
 
 namespace {
+// The index i with t[i - 1] <= x < t[i], clamped to [1, n - 1].
+std::size_t segment(const std::vector<double>& t, double x) {
+  const auto i = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
+  return std::clamp<std::size_t>(i, 1, t.size() - 1);
+}
+
 // The piecewise-linear function through (t, q), held constant outside [t.front(), t.back()].
 double interpolate(const std::vector<double>& t, const std::vector<double>& q, double x) {
   if (x <= t.front()) return q.front();
   if (x >= t.back()) return q.back();
-  const auto i = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
+  const std::size_t i = segment(t, x);
   const double w = (x - t[i - 1]) / (t[i] - t[i - 1]);
   return q[i - 1] + w * (q[i] - q[i - 1]);
 }
 
-// Its exact integral over [a, b]: the trapezoid rule between consecutive kinks.
-double linear_integral(const std::vector<double>& t, const std::vector<double>& q, double a, double b) {
-  std::vector<double> xs{a};
-  for (double x : t)
-    if (x > a && x < b) xs.push_back(x);
-  xs.push_back(b);
-  double sum = 0.0;
-  for (std::size_t i = 1; i < xs.size(); ++i)
-    sum += 0.5 * (interpolate(t, q, xs[i - 1]) + interpolate(t, q, xs[i])) * (xs[i] - xs[i - 1]);
-  return sum;
-}
 }  // namespace
 
 Hydrograph Hydrograph::table(std::vector<double> times, std::vector<double> discharges) {
@@ -48,6 +43,9 @@ Hydrograph Hydrograph::table(std::vector<double> times, std::vector<double> disc
   h.kind_ = Kind::table;
   h.times_ = std::move(times);
   h.values_ = std::move(discharges);
+  h.prefix_.assign(h.times_.size(), 0.0);
+  for (std::size_t i = 1; i < h.times_.size(); ++i)
+    h.prefix_[i] = h.prefix_[i - 1] + 0.5 * (h.values_[i - 1] + h.values_[i]) * (h.times_[i] - h.times_[i - 1]);
   return h;
 }
 
@@ -111,18 +109,29 @@ double Hydrograph::operator()(double t) const {
 }
 
 double Hydrograph::volume(double t0, double t1) const {
+  return cumulative(t1) - cumulative(t0);
+}
+
+double Hydrograph::cumulative(double t) const {
   switch (kind_) {
     case Kind::constant:
-      return peak_ * (t1 - t0);
+      return peak_ * t;
     case Kind::sine: {
       const double w = 2.0 * std::numbers::pi / period_;
-      return peak_ * (0.5 * (t1 - t0) - 0.5 / w * (std::cos(w * t1) - std::cos(w * t0)));
+      return peak_ * (0.5 * t - 0.5 / w * (std::cos(w * t) - 1.0));
     }
     case Kind::table:
     case Kind::triangular:
-      return linear_integral(times_, values_, t0, t1);
+      break;
   }
-  return 0.0;
+  // F(x) = integral from times_.front() to x of the constant-extended interpolant; F(t) - F(0).
+  auto running = [&](double x) {
+    if (x <= times_.front()) return values_.front() * (x - times_.front());
+    if (x >= times_.back()) return prefix_.back() + values_.back() * (x - times_.back());
+    const std::size_t i = segment(times_, x);
+    return prefix_[i - 1] + 0.5 * (values_[i - 1] + interpolate(times_, values_, x)) * (x - times_[i - 1]);
+  };
+  return running(t) - running(0.0);
 }
 
 }  // namespace suite::breach

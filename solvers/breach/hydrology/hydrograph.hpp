@@ -33,6 +33,9 @@ class Hydrograph {
   // Exact volume between t0 and t1 (m^3): piecewise-linear and sine forms integrate in closed
   // form, so the reservoir mass balance can be checked to round-off.
   double volume(double t0, double t1) const;
+  // The same as a running total from t = 0, in O(log n): volume(t0, t1) = cumulative(t1) -
+  // cumulative(t0). The breach integrator evaluates it at every stage of every step.
+  double cumulative(double t) const;
   // Times where the hydrograph has a kink (table points, triangle corners): an adaptive
   // integrator should step onto them rather than across.
   const std::vector<double>& breakpoints() const { return times_; }
@@ -41,6 +44,7 @@ class Hydrograph {
  private:
   Kind kind_ = Kind::constant;
   std::vector<double> times_, values_;  // table and triangular (as a table)
+  std::vector<double> prefix_;          // integral from times_.front() to times_[i]
   double peak_ = 0.0, period_ = 0.0;
 };
 

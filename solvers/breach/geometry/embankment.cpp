@@ -1,0 +1,46 @@
+#include "solvers/breach/geometry/embankment.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace suite::breach {
+
+Embankment Embankment::read(const config::Section& s) {
+  using config::Range;
+  Embankment e;
+  e.height = s.quantity("height", "m", Range::positive());
+  e.crest_width = s.quantity("crest_width", "m", Range::at_least(0));
+  e.crest_length = s.quantity("crest_length", "m", Range::positive());
+  // A slope of 0 H:V is a vertical face: no downstream face for the flow, no upstream toe.
+  e.upstream_slope = s.number("upstream_slope", Range::positive());
+  e.downstream_slope = s.number("downstream_slope", Range::positive());
+  e.foundation = s.quantity("foundation", "m", 0.0);
+  return e;
+}
+
+double Embankment::surface(double x) const {
+  if (x <= 0.0) return foundation;
+  if (x <= x_crest_downstream()) return foundation + x / downstream_slope;
+  if (x <= x_crest_upstream()) return crest();
+  return std::max(foundation, crest() - (x - x_crest_upstream()) / upstream_slope);
+}
+
+double Embankment::streamwise_length(double z) const {
+  if (z > crest()) return 0.0;
+  const double depth_below_crest = crest() - std::max(z, foundation);
+  return crest_width + (upstream_slope + downstream_slope) * depth_below_crest;
+}
+
+double Embankment::downstream_face_length() const {
+  return height * std::sqrt(1.0 + downstream_slope * downstream_slope);
+}
+
+double Embankment::cut_volume(double b, double s, double zb) const {
+  // integral over u = z - z_b in [0, d] of (b + 2 s u) (c0 - k u) du, with
+  // c0 = streamwise_length(z_b), k = upstream_slope + downstream_slope, d = crest - z_b.
+  const double d = std::max(0.0, crest() - std::max(zb, foundation));
+  const double c0 = streamwise_length(crest() - d), k = upstream_slope + downstream_slope;
+  return b * c0 * d + (2.0 * s * c0 - b * k) * d * d / 2.0 - 2.0 * s * k * d * d * d / 3.0;
+}
+
+}  // namespace suite::breach

@@ -1,0 +1,151 @@
+#include "solvers/breach/model/breach_state.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "solvers/breach/erosion/excess_stress.hpp"
+#include "solvers/breach/hydraulics/open_channel.hpp"
+#include "solvers/breach/hydraulics/weir.hpp"
+
+namespace suite::breach {
+
+BreachState::BreachState(const Scene& scene)
+    : scene_(scene), inflow_at_start_(scene.inflow.cumulative(scene.time.start)) {}
+
+StateVector BreachState::initial() const {
+  StateVector y{};
+  y[kStorageLessInflow] = scene_.reservoir.storage.volume(scene_.reservoir.initial_level);
+  y[kInvert] = scene_.dam.crest();
+  y[kBottomWidth] = scene_.breach.initial_width;
+  return y;
+}
+
+double BreachState::invert(const StateVector& y, Stage stage) const {
+  return stage >= Stage::breach_formation ? y[kInvert] : scene_.dam.crest();
+}
+
+double BreachState::top_width(const StateVector& y, Stage stage) const {
+  if (stage < Stage::breach_formation) return y[kBottomWidth];
+  return y[kBottomWidth] + 2.0 * scene_.breach.side_slope * (scene_.dam.crest() - y[kInvert]);
+}
+
+Flows BreachState::flows(double t, const StateVector& y, Stage stage) const {
+  const Scene& sc = scene_;
+  Flows f;
+  f.inflow = sc.inflow(t);
+  f.storage = storage(t, y);
+  f.level = sc.reservoir.storage.level(std::max(f.storage, 0.0));
+  // Before the breach forms, the concentrated flow passes a rectangular notch at crest level;
+  // afterwards a trapezoid whose side slopes carry flow too, but only below the crest level: the
+  // flow above it is crest flow, over the crest length not taken by the breach's top width. (The
+  // side term is c2 s (h^2.5 - h_crest^2.5), so the outflow is continuous at breach initiation.)
+  const double zb = invert(y, stage);
+  const double s = stage >= Stage::breach_formation ? sc.breach.side_slope : 0.0;
+  f.breach = weir_discharge(y[kBottomWidth], s, f.level - zb, sc.gravity) -
+             weir_discharge(0.0, s, f.level - sc.dam.crest(), sc.gravity);
+  const double rest = std::max(sc.dam.crest_length - top_width(y, stage), 0.0);
+  f.crest = weir_discharge(rest, 0.0, f.level - sc.dam.crest(), sc.gravity);
+  f.spillway = sc.reservoir.spillway(f.level);
+  return f;
+}
+
+double BreachState::headcut_height(const StateVector& y) const {
+  return scene_.breach.formation_depth + scene_.dam.surface(y[kHeadcutPosition]) - scene_.dam.foundation;
+}
+
+double BreachState::stress(const Flows& f, const StateVector& y, Stage stage) const {
+  const Scene& sc = scene_;
+  const double q = f.breach / y[kBottomWidth];
+  switch (stage) {
+    case Stage::surface_erosion: {
+      const double n = sc.breach.face_roughness, slope = 1.0 / sc.dam.downstream_slope;
+      return effective_stress(normal_flow_stress(q, slope, n, sc.gravity), sc.soil.grain_roughness, n);
+    }
+    case Stage::headcut_advance:
+      return jet_stress(q, headcut_height(y), std::cbrt(q * q / sc.gravity), sc.breach.headcut, sc.gravity);
+    case Stage::breach_formation:
+    case Stage::breach_widening:
+      return critical_section_stress(y[kBottomWidth], sc.breach.side_slope, f.level - y[kInvert],
+                                     sc.soil.grain_roughness, sc.gravity);
+  }
+  return 0.0;
+}
+
+void BreachState::derivatives(double t, const StateVector& y, Stage stage, bool width_capped,
+                              StateVector& dydt) const {
+  const Scene& sc = scene_;
+  const Flows f = flows(t, y, stage);
+  dydt.fill(0.0);
+  dydt[kStorageLessInflow] = -f.total();
+  dydt[kBreachVolume] = f.breach;
+  dydt[kCrestVolume] = f.crest;
+  dydt[kSpillwayVolume] = f.spillway;
+  switch (stage) {
+    case Stage::surface_erosion:
+      dydt[kFaceErosion] = erosion_rate(sc.soil.kd, stress(f, y, stage), sc.soil.tau_c);
+      break;
+    case Stage::headcut_advance:
+      dydt[kHeadcutPosition] = headcut_advance_rate(f.breach / y[kBottomWidth], headcut_height(y), sc.soil,
+                                                    sc.breach.headcut, sc.gravity);
+      break;
+    case Stage::breach_formation:
+    case Stage::breach_widening: {
+      const double rate = erosion_rate(sc.soil.kd, stress(f, y, stage), sc.soil.tau_c);
+      if (stage == Stage::breach_formation) dydt[kInvert] = -rate;
+      if (!width_capped) dydt[kBottomWidth] = 2.0 * rate;
+      break;
+    }
+  }
+}
+
+BreachState::Event BreachState::stage_end(Stage stage) const {
+  switch (stage) {
+    case Stage::surface_erosion:
+      return {kFaceErosion, scene_.breach.formation_depth};
+    case Stage::headcut_advance:
+      return {kHeadcutPosition, scene_.dam.x_crest_upstream()};
+    case Stage::breach_formation:
+    case Stage::breach_widening:
+      break;
+  }
+  return {kInvert, scene_.dam.foundation};
+}
+
+double BreachState::distance(const Event& e, double t, const StateVector& y) const {
+  // Face erosion, headcut position and width grow towards the event; the invert and the
+  // storage fall to it.
+  if (e.component == kStorageLessInflow) return storage(t, y);
+  return e.component == kInvert ? y[kInvert] - e.at : e.at - y[e.component];
+}
+
+double BreachState::eroded_volume(const StateVector& y, Stage stage) const {
+  const Embankment& dam = scene_.dam;
+  const double b0 = scene_.breach.initial_width;
+  if (stage == Stage::surface_erosion) return b0 * y[kFaceErosion] * dam.downstream_face_length();
+  // The headcut channel: width b0 from the toe to the headcut, floor at foundation - formation
+  // depth, up to the embankment surface (or, once the breach cut exists, up to its invert).
+  const double floor = dam.foundation - scene_.breach.formation_depth;
+  const double x_end = y[kHeadcutPosition];
+  const bool cut = stage >= Stage::breach_formation;
+  const double top = cut ? y[kInvert] : dam.crest();
+  std::vector<double> xs{0.0, x_end, dam.x_crest_downstream(), dam.x_crest_upstream(),
+                         dam.downstream_slope * (top - dam.foundation),
+                         dam.x_crest_upstream() + dam.upstream_slope * (dam.crest() - top)};
+  std::erase_if(xs, [&](double x) { return x < 0.0 || x > x_end; });
+  std::sort(xs.begin(), xs.end());
+  auto depth = [&](double x) { return std::min(dam.surface(x), top) - floor; };
+  double channel = 0.0;  // the integrand is linear between the kinks in xs: the trapezoid rule is exact
+  for (std::size_t i = 1; i < xs.size(); ++i) channel += 0.5 * (depth(xs[i - 1]) + depth(xs[i])) * (xs[i] - xs[i - 1]);
+  channel *= b0;
+  return channel + (cut ? dam.cut_volume(y[kBottomWidth], scene_.breach.side_slope, y[kInvert]) : 0.0);
+}
+
+StateVector BreachState::scales() const {
+  const double volume = std::max({scene_.reservoir.storage.volume(scene_.dam.crest()),
+                                  scene_.reservoir.storage.volume(scene_.reservoir.initial_level), 1.0});
+  const double length = scene_.dam.height;
+  return {volume, volume, volume, volume, length, length, length, length};
+}
+
+}  // namespace suite::breach

@@ -1,0 +1,77 @@
+#include "solvers/breach/model/scene.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace suite::breach {
+
+namespace {
+
+Reservoir read_reservoir(const config::Section& s, const Embankment& dam) {
+  Reservoir r;
+  r.storage = StageStorage::read(s.section("storage"));
+  r.initial_level = s.quantity("initial_level", "m");
+  if (r.initial_level < r.storage.bottom())
+    s.reject("initial_level", fmt::format("is below the bottom of the storage relation ({} m)", r.storage.bottom()));
+  if (r.initial_level > dam.crest() + dam.height)
+    s.reject("initial_level", fmt::format("is more than a dam height above the crest ({} m); check the datum "
+                                          "(levels and dam.foundation use the same one)",
+                                          dam.crest()));
+  if (auto sp = s.optional_section("spillway")) r.spillway = RatingCurve::read(*sp);
+  return r;
+}
+
+BreachSettings read_breach(const config::Section& b, const config::Section& h, const Embankment& dam,
+                           const Soil& soil) {
+  using config::Range;
+  BreachSettings out;
+  out.initial_width = b.quantity("initial_width", "m", std::min(dam.height, dam.crest_length), Range::positive());
+  if (out.initial_width > dam.crest_length)
+    b.reject("initial_width", fmt::format("is wider than the crest ({} m)", dam.crest_length));
+  out.side_slope = b.number("side_slope", 1.0, Range::at_least(0));
+  out.face_roughness = b.number("face_roughness", soil.grain_roughness, Range::at_least(soil.grain_roughness));
+  out.formation_depth = h.quantity("formation_depth", "m", 0.1 * dam.height, Range::positive());
+  if (out.formation_depth >= dam.height) h.reject("formation_depth", "must be less than the dam height");
+  out.headcut.jet_friction = h.number("jet_friction", out.headcut.jet_friction, Range::positive());
+  out.headcut.jet_diffusion = h.number("jet_diffusion", out.headcut.jet_diffusion, Range::positive());
+  out.headcut.critical_height_factor =
+      h.number("critical_height_factor", out.headcut.critical_height_factor, Range::positive());
+  return out;
+}
+
+TimeSettings read_time(const config::Section& s) {
+  using config::Range;
+  TimeSettings t;
+  t.start = s.quantity("start", "s", 0.0);
+  t.end = s.quantity("end", "s");
+  if (t.end <= t.start) s.reject("end", fmt::format("must be after time.start ({} s)", t.start));
+  t.adaptive = s.choice("step", {"adaptive", "fixed"}, "adaptive") == "adaptive";
+  if (t.adaptive) {
+    t.tolerance = s.number("tolerance", 1e-6, Range::between(1e-13, 1e-1));
+    t.max_step = s.quantity("max_step", "s", (t.end - t.start) / 50.0, Range::positive());
+  } else {
+    t.fixed_step = s.quantity("dt", "s", Range::positive());
+    t.max_step = t.fixed_step;
+  }
+  return t;
+}
+
+}  // namespace
+
+Scene Scene::read(const config::Section& root) {
+  using config::Range;
+  Scene sc;
+  sc.gravity = root.quantity("gravity", "m/s^2", 9.81, Range::positive());
+  sc.dam = Embankment::read(root.section("dam"));
+  sc.soil = Soil::read(root.section("soil"));
+  sc.reservoir = read_reservoir(root.section("reservoir"), sc.dam);
+  sc.inflow = Hydrograph::read(root.section("inflow"));
+  sc.breach = read_breach(root.section_or_empty("breach"), root.section_or_empty("headcut"), sc.dam, sc.soil);
+  sc.time = read_time(root.section("time"));
+  sc.output_interval =
+      root.section_or_empty("output").quantity("interval", "s", (sc.time.end - sc.time.start) / 1000.0, Range::positive());
+  return sc;
+}
+
+}  // namespace suite::breach

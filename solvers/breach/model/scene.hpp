@@ -1,0 +1,72 @@
+#pragma once
+// Everything one breach run needs, read from a scene (YAML) with units per quantity:
+//
+//   gravity: 9.81 m/s^2              # optional
+//   dam:       {height, crest_width, crest_length, upstream_slope, downstream_slope, foundation}
+//   soil:      {erodibility, critical_shear_stress, undrained_shear_strength, unit_weight,
+//               grain_roughness | d75}
+//   reservoir: {storage: {...}, initial_level: 11 m, spillway: {table: [...]}}   # spillway optional
+//   inflow:    {type: table | constant | sine | triangular, ...}
+//   breach:    {initial_width, side_slope, face_roughness}                       # all optional
+//   headcut:   {formation_depth, jet_friction, jet_diffusion, critical_height_factor}  # optional
+//   time:      {start, end, step: adaptive | fixed, tolerance, dt, max_step}
+//   output:    {interval}                                                         # executable only
+//
+// The sections' own headers (embankment.hpp, soil.hpp, stage_storage.hpp, rating_curve.hpp,
+// hydrograph.hpp, headcut.hpp) describe their keys and the sources of their coefficients.
+#include "core/config/config.hpp"
+#include "solvers/breach/erosion/headcut.hpp"
+#include "solvers/breach/geometry/embankment.hpp"
+#include "solvers/breach/hydrology/hydrograph.hpp"
+#include "solvers/breach/hydrology/rating_curve.hpp"
+#include "solvers/breach/hydrology/stage_storage.hpp"
+#include "solvers/breach/soil/soil.hpp"
+
+namespace suite::breach {
+
+struct Reservoir {
+  StageStorage storage = StageStorage::power_law(1.0, 0.0, 1.0);
+  double initial_level = 0.0;  // m
+  RatingCurve spillway;
+};
+
+struct BreachSettings {
+  // Width (m) of the concentrated flow in which the headcut forms and advances, and the breach's
+  // bottom width when it starts to lower. Not fixed by the literature: default one dam height,
+  // capped at the crest length (DL Breach suggests a 1-5 m pilot channel, Wu 2016).
+  double initial_width = 0.0;
+  // Breach side slopes, H:V. Default 1.0: Froehlich's (2008) average for overtopping failures.
+  double side_slope = 1.0;
+  // Total Manning n of the downstream face (grain + form + vegetation). Default: the soil's grain
+  // roughness (bare, smooth face), which makes tau_e = tau_0.
+  double face_roughness = 0.0;
+  // Eroded depth on the downstream face at which the headcut forms at the toe (stage I -> II).
+  // Not published; default 10% of the dam height (an assumption, an input).
+  double formation_depth = 0.0;
+  HeadcutCoefficients headcut;
+};
+
+struct TimeSettings {
+  double start = 0.0, end = 0.0;  // s
+  bool adaptive = true;
+  double tolerance = 1e-6;  // relative error per step (adaptive)
+  double fixed_step = 0.0;  // s (fixed)
+  double max_step = 0.0;    // s, cap on the adaptive step
+};
+
+struct Scene {
+  double gravity = 9.81;
+  Embankment dam;
+  Soil soil;
+  Reservoir reservoir;
+  Hydrograph inflow = Hydrograph::constant(0.0);
+  BreachSettings breach;
+  TimeSettings time;
+  double output_interval = 0.0;  // s, between rows of the time series (default: 1000 rows)
+
+  // Reads the whole scene (the caller calls cfg.finish() after any keys of its own).
+  // InputError names the key and the fix.
+  static Scene read(const config::Section& root);
+};
+
+}  // namespace suite::breach
