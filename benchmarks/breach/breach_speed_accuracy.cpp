@@ -65,9 +65,10 @@ int main(int argc, char** argv) {
   }
   Result r;
   const double per_run = seconds_per_run(scene({}), repeats, batch, r);
-  std::printf("default scene, 20-hour event, tolerance 1e-6: %.3f ms per run = %.0f runs per minute per core "
-              "(median of %d batches of %d; %ld steps, %ld evaluations)\n",
-              per_run * 1e3, 60.0 / per_run, repeats, batch, r.steps, r.evaluations);
+  std::printf(
+      "default scene, 20-hour event, tolerance 1e-6: %.3f ms per run = %.0f runs per minute per core "
+      "(median of %d batches of %d; %ld steps, %ld evaluations)\n",
+      per_run * 1e3, 60.0 / per_run, repeats, batch, r.steps, r.evaluations);
 
   const double reference = simulate(scene({"time.tolerance=1e-11"})).peak_outflow;
   struct Row {
@@ -96,8 +97,8 @@ int main(int argc, char** argv) {
     gethostname(host, sizeof host - 1);
     std::ofstream csv(out_csv);
     csv << "# breach_speed_accuracy: host " << host << ", " << sysconf(_SC_NPROCESSORS_ONLN) << " cores, suite "
-        << b.version << " (" << b.git_hash << "), " << b.build_type << ", " << b.compiler << ", medians of "
-        << repeats << " repeats\n";
+        << b.version << " (" << b.git_hash << "), " << b.build_type << ", " << b.compiler << ", medians of " << repeats
+        << " repeats\n";
     csv << "# throughput: " << per_run * 1e3 << " ms per run, " << 60.0 / per_run
         << " runs per minute per core (default scene, 20-hour event, tolerance 1e-6)\n";
     csv << "# reference peak outflow (tolerance 1e-11): " << reference << " m^3/s\n";

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -11,6 +12,7 @@
 #include "core/config/config.hpp"
 #include "solvers/breach/erosion/headcut.hpp"
 #include "solvers/breach/hydraulics/open_channel.hpp"
+#include "solvers/breach/hydraulics/pipe_flow.hpp"
 #include "solvers/breach/model/simulate.hpp"
 #include "tests/support/test_dirs.hpp"
 
@@ -63,8 +65,9 @@ TEST(BreachModel, ReservoirMassBalanceClosesToRoundOff) {
       {},
       {"inflow={type: table, table: [[0 h, 0 cfs], [3 h, 30000 cfs], [5 h, 8000 cfs], [12 h, 0 cfs]]}",
        "reservoir.spillway={table: [[10 m, 0 m^3/s], [11 m, 40 m^3/s], [13 m, 200 m^3/s]]}"},
-      {"inflow={type: sine, peak: 900 m^3/s, period: 5 h}", "reservoir.storage={type: table, table: [[0 m, 0 m^3], "
-                                                            "[6 m, 1e6 m^3], [12 m, 5e6 m^3], [14 m, 7e6 m^3]]}"},
+      {"inflow={type: sine, peak: 900 m^3/s, period: 5 h}",
+       "reservoir.storage={type: table, table: [[0 m, 0 m^3], "
+       "[6 m, 1e6 m^3], [12 m, 5e6 m^3], [14 m, 7e6 m^3]]}"},
       {"time.step=fixed", "time.dt=45 s"}};
   for (const auto& o : cases) {
     const Scene s = scene(o);
@@ -72,8 +75,8 @@ TEST(BreachModel, ReservoirMassBalanceClosesToRoundOff) {
     const double scale = std::max(r.inflow_volume, s.reservoir.storage.volume(s.reservoir.initial_level));
     EXPECT_LT(std::abs(r.mass_balance_error), 1e-13 * scale) << r.mass_balance_error << " of " << scale;
     // The storage change agrees with the stage-storage relation at the final level.
-    const double from_levels = s.reservoir.storage.volume(r.final_level) -
-                               s.reservoir.storage.volume(s.reservoir.initial_level);
+    const double from_levels =
+        s.reservoir.storage.volume(r.final_level) - s.reservoir.storage.volume(s.reservoir.initial_level);
     EXPECT_NEAR(r.storage_change, from_levels, 1e-9 * scale);
     EXPECT_NEAR(r.inflow_volume, s.inflow.volume(s.time.start, s.time.end), 1e-12 * scale);
   }
@@ -123,6 +126,29 @@ TEST(BreachModel, HeadcutTraverseTimeMatchesQuadrature) {
   for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * inv(i * face / n);
   const double expected = sum * face / n / 3.0 + 6.0 * inv(face + 3.0);
   EXPECT_NEAR(*r.initiation_time - *r.headcut_formation_time, expected, 1e-7 * expected);
+}
+
+TEST(BreachModel, PipeCollapseTimeMatchesQuadrature) {
+  // Stage 0 at constant reservoir level: the pipe (invert 3 m, 0.1 m to start) grows at
+  // dd/dt = 2 kd (tau(d) - tau_c), so its roof collapses (d = 0.5 x (12 - 3) m) at
+  // t = integral of dd / (2 kd (tau(d) - tau_c)); Simpson's rule on the library's pipe relations.
+  auto o = constant_head();
+  o.insert(o.end(), {"internal_erosion={elevation: 3 m, initial_diameter: 0.1 m}", "inflow.discharge=0",
+                     "reservoir.initial_level=11 m", "time.tolerance=1e-10"});
+  const Scene s = scene(o);
+  const Result r = simulate(s);
+  ASSERT_TRUE(r.initiation_time);
+  EXPECT_FALSE(r.headcut_formation_time) << "no headcut in the internal-erosion mode";
+  auto inv = [&](double d) {
+    const double length = s.dam.streamwise_length(3.0 + d / 2), head = 11.0 - (3.0 + d / 2);
+    const double q = pipe_discharge(d, length, head, 0.016, 0.5, g);
+    return 1.0 / (2.0 * 35e-6 * (pipe_wall_stress(d, q, 0.016, g) - 4.8));
+  };
+  const int n = 20000;
+  const double a = 0.1, b = 4.5, h = (b - a) / n;
+  double sum = inv(a) + inv(b);
+  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * inv(a + i * h);
+  EXPECT_NEAR(*r.initiation_time, sum * h / 3.0, 1e-7 * sum * h / 3.0);
 }
 
 TEST(BreachModel, ResultsDoNotDependOnTheStep) {
@@ -193,8 +219,8 @@ TEST(BreachModel, HistoricalScaleDamsFallInTheFroehlichBands) {
   struct Dam {
     double height, volume, length;
   };
-  for (const Dam& d : {Dam{6, 1e6, 100}, Dam{10, 5e6, 150}, Dam{12, 3e6, 150}, Dam{15, 1e7, 200},
-                       Dam{20, 3e7, 300}, Dam{25, 2e7, 250}, Dam{30, 1e8, 400}, Dam{40, 3e8, 500}}) {
+  for (const Dam& d : {Dam{6, 1e6, 100}, Dam{10, 5e6, 150}, Dam{12, 3e6, 150}, Dam{15, 1e7, 200}, Dam{20, 3e7, 300},
+                       Dam{25, 2e7, 250}, Dam{30, 1e8, 400}, Dam{40, 3e8, 500}}) {
     const Result r = run({"dam.height=" + std::to_string(d.height), "dam.crest_length=" + std::to_string(d.length),
                           "reservoir.storage.alpha=" + std::to_string(d.volume / (d.height * d.height)),
                           "reservoir.initial_level=" + std::to_string(d.height - 0.5),
@@ -207,6 +233,10 @@ TEST(BreachModel, HistoricalScaleDamsFallInTheFroehlichBands) {
         << d.height << " m, " << vw << " m^3: " << r.peak_outflow << " vs " << qp;
     const double tf = 63.2 * std::sqrt(vw / (g * r.final_depth * r.final_depth));
     const double t = *r.foundation_time - *r.initiation_time;
+    std::printf(
+        "%5.0f m %9.3g m^3: peak %8.4g m^3/s (Froehlich 1995 %8.4g, %+.2f log), formation %6.0f s "
+        "(Froehlich 2008 %5.0f s, %+.2f log)\n",
+        d.height, vw, r.peak_outflow, qp, std::log10(r.peak_outflow / qp), t, tf, std::log10(t / tf));
     EXPECT_LT(std::abs(std::log10(t / tf)), 1.0) << d.height << " m: " << t << " s vs " << tf << " s";
   }
 }

@@ -1,10 +1,12 @@
-// Flow down the face and through the breach: Manning normal depth, critical depth of a
-// trapezoid, and the stresses the erosion law uses, against hand calculations.
+// Flow down the face, through the breach and through an internal-erosion pipe: Manning normal depth, critical depth of
+// a trapezoid, and the stresses the erosion law uses, against hand calculations.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "solvers/breach/hydraulics/open_channel.hpp"
+#include "solvers/breach/hydraulics/pipe_flow.hpp"
 #include "solvers/breach/hydraulics/weir.hpp"
 
 namespace {
@@ -56,6 +58,20 @@ TEST(OpenChannel, CriticalSectionStressByHand) {
   EXPECT_EQ(critical_section_stress(0.0, 0.0, 1.0, 0.016, g), 0.0) << "no section, no flow";
   // Stress rises with head (V^2 ~ h, R^(1/3) grows slower).
   EXPECT_GT(critical_section_stress(4.0, 1.0, 2.0, 0.016, g), critical_section_stress(4.0, 1.0, 1.0, 0.016, g));
+}
+
+TEST(PipeFlow, DischargeAndWallStressByHand) {
+  // d = 0.5 m, L = 40 m, h = 5 m, n_s = 0.016, K_e = 0.5: f = 8 g n_s^2 / (d/4)^(1/3) = 0.0401818,
+  // Q = A sqrt(2 g h / (1 + K_e + f L / d)) = 0.196350 x 4.56157 = 0.895663 m^3/s.
+  const double f = 8.0 * g * 0.016 * 0.016 / std::cbrt(0.125);
+  EXPECT_NEAR(f, 0.0401818, 1e-7);
+  const double q = pipe_discharge(0.5, 40.0, 5.0, 0.016, 0.5, g);
+  EXPECT_NEAR(q, 0.895663, 1e-6);
+  // Wall stress from the energy slope, rho g (d/4) h_f / L, equals the Darcy form rho f V^2 / 8.
+  const double v = q / (std::numbers::pi * 0.0625), hf = f * (40.0 / 0.5) * v * v / (2.0 * g);
+  EXPECT_NEAR(pipe_wall_stress(0.5, q, 0.016, g), 1000.0 * g * 0.125 * hf / 40.0, 1e-9);
+  EXPECT_NEAR(pipe_wall_stress(0.5, q, 0.016, g), 1000.0 * f * v * v / 8.0, 1e-9);
+  EXPECT_EQ(pipe_discharge(0.5, 40.0, -0.1, 0.016, 0.5, g), 0.0) << "level below the pipe's centre";
 }
 
 }  // namespace

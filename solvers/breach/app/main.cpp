@@ -29,10 +29,10 @@ int main(int argc, char** argv) {
     }
     const auto& cl = *parsed.command_line;
     suite::Logger log(world, "breach", {suite::parse_log_level(cl.log_level), cl.log_all_ranks, nullptr});
-    const auto scene = cl.scene ? suite::config::Config::from_file(*cl.scene, cl.overrides)
-                                : suite::config::Config::from_string(suite::embedded::breach_default_yaml,
-                                                                     "<embedded embankment_overtopping.yaml>",
-                                                                     cl.overrides);
+    const auto scene = cl.scene
+                           ? suite::config::Config::from_file(*cl.scene, cl.overrides)
+                           : suite::config::Config::from_string(suite::embedded::breach_default_yaml,
+                                                                "<embedded embankment_overtopping.yaml>", cl.overrides);
     return suite::breach::run_breach(world, scene, {cl.out, cl.argv}, log);
   });
 }

@@ -32,9 +32,9 @@ namespace suite::breach {
 struct Soil;
 
 struct HeadcutCoefficients {
-  double jet_friction = 0.025;          // C_f (Stein et al. 1993)
-  double jet_diffusion = 2.6;           // C_d (Stein et al. 1993)
-  double critical_height_factor = 3.85; // N (Taylor 1948)
+  double jet_friction = 0.025;           // C_f (Stein et al. 1993)
+  double jet_diffusion = 2.6;            // C_d (Stein et al. 1993)
+  double critical_height_factor = 3.85;  // N (Taylor 1948)
 };
 
 // Jet stress (Pa) at depth J (m) below the tailwater surface, for unit discharge q and drop H.

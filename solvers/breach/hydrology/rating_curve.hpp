@@ -11,7 +11,7 @@ namespace suite::breach {
 
 class RatingCurve {
  public:
-  RatingCurve() = default;  // no spillway: Q = 0
+  RatingCurve() = default;                                                               // no spillway: Q = 0
   static RatingCurve table(std::vector<double> levels, std::vector<double> discharges);  // InputError if bad
   static RatingCurve read(const config::Section& section);
 

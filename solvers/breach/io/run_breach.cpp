@@ -16,12 +16,23 @@ namespace suite::breach {
 
 namespace {
 
-const std::vector<io::CsvColumn> kColumns = {
-    {"time", "s"},           {"inflow", "m^3/s"},         {"outflow", "m^3/s"},      {"breach_outflow", "m^3/s"},
-    {"crest_outflow", "m^3/s"}, {"spillway_outflow", "m^3/s"}, {"level", "m"},          {"storage", "m^3"},
-    {"stage", ""},           {"stress", "Pa"},            {"face_erosion", "m"},     {"headcut_position", "m"},
-    {"headcut_height", "m"}, {"invert", "m"},             {"bottom_width", "m"},     {"top_width", "m"},
-    {"eroded_volume", "m^3"}};
+const std::vector<io::CsvColumn> kColumns = {{"time", "s"},
+                                             {"inflow", "m^3/s"},
+                                             {"outflow", "m^3/s"},
+                                             {"breach_outflow", "m^3/s"},
+                                             {"crest_outflow", "m^3/s"},
+                                             {"spillway_outflow", "m^3/s"},
+                                             {"level", "m"},
+                                             {"storage", "m^3"},
+                                             {"stage", ""},
+                                             {"stress", "Pa"},
+                                             {"face_erosion", "m"},
+                                             {"headcut_position", "m"},
+                                             {"headcut_height", "m"},
+                                             {"invert", "m"},
+                                             {"bottom_width", "m"},
+                                             {"top_width", "m"},
+                                             {"eroded_volume", "m^3"}};
 
 double or_nan(const std::optional<double>& v) {
   return v ? *v : std::nan("");
@@ -59,9 +70,10 @@ Summary make_summary(const Result& r) {
 
 int run_breach(const mpi::Comm& comm, const config::Config& cfg, const RunOptions& options, Logger& log) {
   if (comm.size() != 1)
-    throw InputError(fmt::format("breach runs one scene on one process, not {}; to run many scenes at once use "
-                                 "`study` (in-process, MPI workers or a Slurm array)",
-                                 comm.size()));
+    throw InputError(
+        fmt::format("breach runs one scene on one process, not {}; to run many scenes at once use "
+                    "`study` (in-process, MPI workers or a Slurm array)",
+                    comm.size()));
   PhaseTimers timers;
   RunRecord record(comm, "breach", options.argv);
   record.extra()["scene"] = cfg.source_name();
@@ -77,7 +89,7 @@ int run_breach(const mpi::Comm& comm, const config::Config& cfg, const RunOption
            scene.time.adaptive ? fmt::format("adaptive (tolerance {:g})", scene.time.tolerance)
                                : fmt::format("fixed {} s", scene.time.fixed_step));
   io::CsvSeries csv(out / "hydrograph.csv", kColumns);
-  Stage last = Stage::surface_erosion;
+  std::optional<Stage> last;
   Result result;
   {
     ScopedPhase phase(timers, "integrate");
@@ -86,7 +98,7 @@ int run_breach(const mpi::Comm& comm, const config::Config& cfg, const RunOption
       csv.append({s.time, f.inflow, f.total(), f.breach, f.crest, f.spillway, f.level, f.storage,
                   static_cast<double>(static_cast<int>(s.stage)), s.stress, s.face_erosion, s.headcut_position,
                   s.headcut_height, s.invert, s.bottom_width, s.top_width, s.eroded_volume});
-      if (s.stage != last) log.info("t = {:.3f} h: {}", s.time / 3600.0, stage_name(s.stage));
+      if (s.stage != last) log.info("t = {:.3f} h: {}", s.time / 3600.0, stage_name(s.stage));  // as sampled
       last = s.stage;
     });
   }
@@ -95,8 +107,8 @@ int run_breach(const mpi::Comm& comm, const config::Config& cfg, const RunOption
            result.initiation_time ? fmt::format("breach initiated at {:.3f} h", *result.initiation_time / 3600.0)
                                   : std::string("no breach"),
            result.final_depth, result.final_bottom_width);
-  log.info("{} steps ({} rejected), {} evaluations; mass balance error {:.3g} m^3 of {:.4g} m^3 inflow",
-           result.steps, result.rejected_steps, result.evaluations, result.mass_balance_error, result.inflow_volume);
+  log.info("{} steps ({} rejected), {} evaluations; mass balance error {:.3g} m^3 of {:.4g} m^3 inflow", result.steps,
+           result.rejected_steps, result.evaluations, result.mass_balance_error, result.inflow_volume);
   make_summary(result).write(out / "summary.json");
   if (plot) {
     ScopedPhase phase(timers, "plot");

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "solvers/breach/erosion/excess_stress.hpp"
 #include "solvers/breach/hydraulics/open_channel.hpp"
+#include "solvers/breach/hydraulics/pipe_flow.hpp"
 #include "solvers/breach/hydraulics/weir.hpp"
 
 namespace suite::breach {
@@ -13,11 +15,16 @@ namespace suite::breach {
 BreachState::BreachState(const Scene& scene)
     : scene_(scene), inflow_at_start_(scene.inflow.cumulative(scene.time.start)) {}
 
+Stage BreachState::first_stage() const {
+  return scene_.internal_erosion.enabled ? Stage::internal_erosion : Stage::surface_erosion;
+}
+
 StateVector BreachState::initial() const {
   StateVector y{};
   y[kStorageLessInflow] = scene_.reservoir.storage.volume(scene_.reservoir.initial_level);
-  y[kInvert] = scene_.dam.crest();
-  y[kBottomWidth] = scene_.breach.initial_width;
+  const InternalErosion& ie = scene_.internal_erosion;
+  y[kInvert] = ie.enabled ? ie.elevation : scene_.dam.crest();
+  y[kBottomWidth] = ie.enabled ? ie.initial_diameter : scene_.breach.initial_width;
   return y;
 }
 
@@ -26,6 +33,7 @@ double BreachState::invert(const StateVector& y, Stage stage) const {
 }
 
 double BreachState::top_width(const StateVector& y, Stage stage) const {
+  if (stage == Stage::internal_erosion) return 0.0;  // the crest is intact above the pipe
   if (stage < Stage::breach_formation) return y[kBottomWidth];
   return y[kBottomWidth] + 2.0 * scene_.breach.side_slope * (scene_.dam.crest() - y[kInvert]);
 }
@@ -40,10 +48,16 @@ Flows BreachState::flows(double t, const StateVector& y, Stage stage) const {
   // afterwards a trapezoid whose side slopes carry flow too, but only below the crest level: the
   // flow above it is crest flow, over the crest length not taken by the breach's top width. (The
   // side term is c2 s (h^2.5 - h_crest^2.5), so the outflow is continuous at breach initiation.)
-  const double zb = invert(y, stage);
-  const double s = stage >= Stage::breach_formation ? sc.breach.side_slope : 0.0;
-  f.breach = weir_discharge(y[kBottomWidth], s, f.level - zb, sc.gravity) -
-             weir_discharge(0.0, s, f.level - sc.dam.crest(), sc.gravity);
+  if (stage == Stage::internal_erosion) {
+    const double d = y[kBottomWidth];
+    f.breach = pipe_discharge(d, pipe_length(y), f.level - (y[kInvert] + 0.5 * d), sc.soil.grain_roughness,
+                              sc.internal_erosion.entrance_loss, sc.gravity);
+  } else {
+    const double zb = invert(y, stage);
+    const double s = stage >= Stage::breach_formation ? sc.breach.side_slope : 0.0;
+    f.breach = weir_discharge(y[kBottomWidth], s, f.level - zb, sc.gravity) -
+               weir_discharge(0.0, s, f.level - sc.dam.crest(), sc.gravity);
+  }
   const double rest = std::max(sc.dam.crest_length - top_width(y, stage), 0.0);
   f.crest = weir_discharge(rest, 0.0, f.level - sc.dam.crest(), sc.gravity);
   f.spillway = sc.reservoir.spillway(f.level);
@@ -58,6 +72,8 @@ double BreachState::stress(const Flows& f, const StateVector& y, Stage stage) co
   const Scene& sc = scene_;
   const double q = f.breach / y[kBottomWidth];
   switch (stage) {
+    case Stage::internal_erosion:
+      return pipe_wall_stress(y[kBottomWidth], f.breach, sc.soil.grain_roughness, sc.gravity);
     case Stage::surface_erosion: {
       const double n = sc.breach.face_roughness, slope = 1.0 / sc.dam.downstream_slope;
       return effective_stress(normal_flow_stress(q, slope, n, sc.gravity), sc.soil.grain_roughness, n);
@@ -72,8 +88,7 @@ double BreachState::stress(const Flows& f, const StateVector& y, Stage stage) co
   return 0.0;
 }
 
-void BreachState::derivatives(double t, const StateVector& y, Stage stage, bool width_capped,
-                              StateVector& dydt) const {
+void BreachState::derivatives(double t, const StateVector& y, Stage stage, bool width_capped, StateVector& dydt) const {
   const Scene& sc = scene_;
   const Flows f = flows(t, y, stage);
   dydt.fill(0.0);
@@ -82,12 +97,15 @@ void BreachState::derivatives(double t, const StateVector& y, Stage stage, bool 
   dydt[kCrestVolume] = f.crest;
   dydt[kSpillwayVolume] = f.spillway;
   switch (stage) {
+    case Stage::internal_erosion:
+      dydt[kBottomWidth] = 2.0 * erosion_rate(sc.soil.kd, stress(f, y, stage), sc.soil.tau_c);
+      break;
     case Stage::surface_erosion:
       dydt[kFaceErosion] = erosion_rate(sc.soil.kd, stress(f, y, stage), sc.soil.tau_c);
       break;
     case Stage::headcut_advance:
-      dydt[kHeadcutPosition] = headcut_advance_rate(f.breach / y[kBottomWidth], headcut_height(y), sc.soil,
-                                                    sc.breach.headcut, sc.gravity);
+      dydt[kHeadcutPosition] =
+          headcut_advance_rate(f.breach / y[kBottomWidth], headcut_height(y), sc.soil, sc.breach.headcut, sc.gravity);
       break;
     case Stage::breach_formation:
     case Stage::breach_widening: {
@@ -100,16 +118,19 @@ void BreachState::derivatives(double t, const StateVector& y, Stage stage, bool 
 }
 
 BreachState::Event BreachState::stage_end(Stage stage) const {
+  constexpr auto end = Event::Kind::stage_end;
   switch (stage) {
+    case Stage::internal_erosion:
+      return {end, kBottomWidth, scene_.internal_erosion.collapse_diameter(scene_.dam.crest())};
     case Stage::surface_erosion:
-      return {kFaceErosion, scene_.breach.formation_depth};
+      return {end, kFaceErosion, scene_.breach.formation_depth};
     case Stage::headcut_advance:
-      return {kHeadcutPosition, scene_.dam.x_crest_upstream()};
+      return {end, kHeadcutPosition, scene_.dam.x_crest_upstream()};
     case Stage::breach_formation:
     case Stage::breach_widening:
       break;
   }
-  return {kInvert, scene_.dam.foundation};
+  return {end, kInvert, scene_.dam.foundation};
 }
 
 double BreachState::distance(const Event& e, double t, const StateVector& y) const {
@@ -122,6 +143,8 @@ double BreachState::distance(const Event& e, double t, const StateVector& y) con
 double BreachState::eroded_volume(const StateVector& y, Stage stage) const {
   const Embankment& dam = scene_.dam;
   const double b0 = scene_.breach.initial_width;
+  if (stage == Stage::internal_erosion)
+    return std::numbers::pi / 4.0 * y[kBottomWidth] * y[kBottomWidth] * pipe_length(y);
   if (stage == Stage::surface_erosion) return b0 * y[kFaceErosion] * dam.downstream_face_length();
   // The headcut channel: width b0 from the toe to the headcut, floor at foundation - formation
   // depth, up to the embankment surface (or, once the breach cut exists, up to its invert).
@@ -129,7 +152,10 @@ double BreachState::eroded_volume(const StateVector& y, Stage stage) const {
   const double x_end = y[kHeadcutPosition];
   const bool cut = stage >= Stage::breach_formation;
   const double top = cut ? y[kInvert] : dam.crest();
-  std::vector<double> xs{0.0, x_end, dam.x_crest_downstream(), dam.x_crest_upstream(),
+  std::vector<double> xs{0.0,
+                         x_end,
+                         dam.x_crest_downstream(),
+                         dam.x_crest_upstream(),
                          dam.downstream_slope * (top - dam.foundation),
                          dam.x_crest_upstream() + dam.upstream_slope * (dam.crest() - top)};
   std::erase_if(xs, [&](double x) { return x < 0.0 || x > x_end; });

@@ -2,6 +2,9 @@
 // The breach model's state, its stages, and the right-hand side the integrator advances
 // (spec/breach.md; the stage structure of WinDAM C, Temple et al. 2005, Hanson et al. 2005):
 //
+//   stage 0  internal erosion (only when the scene has `internal_erosion`, instead of 1 and 2):
+//            a pipe through the embankment grows at 2 kd (tau - tau_c) until its roof collapses;
+//            that is breach initiation, and the breach forms from the pipe's invert.
 //   stage 1  surface erosion: concentrated flow of width b0 down the downstream face at Manning
 //            normal depth erodes the face at kd (tau_e - tau_c); when the eroded depth reaches
 //            the formation depth a headcut forms at the toe.
@@ -24,7 +27,13 @@
 
 namespace suite::breach {
 
-enum class Stage { surface_erosion = 1, headcut_advance = 2, breach_formation = 3, breach_widening = 4 };
+enum class Stage {
+  internal_erosion = 0,
+  surface_erosion = 1,
+  headcut_advance = 2,
+  breach_formation = 3,
+  breach_widening = 4
+};
 
 // Components of the state vector.
 enum Component : std::size_t {
@@ -34,8 +43,8 @@ enum Component : std::size_t {
   kSpillwayVolume,     // through the spillway (m^3)
   kFaceErosion,        // eroded depth on the face, stage 1 (m)
   kHeadcutPosition,    // headcut distance from the downstream toe, stage 2 (m)
-  kInvert,             // breach invert level (m)
-  kBottomWidth,        // breach bottom width (m)
+  kInvert,             // breach invert level (m); the pipe's invert in stage 0
+  kBottomWidth,        // breach bottom width (m); the pipe's diameter in stage 0
   kComponents
 };
 using StateVector = std::array<double, kComponents>;
@@ -53,8 +62,8 @@ class BreachState {
 
   StateVector initial() const;
   Flows flows(double t, const StateVector& y, Stage stage) const;
-  // The erosion stress driving the active stage (Pa): face tau_e (1), jet stress at the headcut
-  // base (2), critical-section tau_e (3, 4).
+  // The erosion stress driving the active stage (Pa): pipe wall (0), face tau_e (1), jet stress
+  // at the headcut base (2), critical-section tau_e (3, 4).
   double stress(const Flows& f, const StateVector& y, Stage stage) const;
   void derivatives(double t, const StateVector& y, Stage stage, bool width_capped, StateVector& dydt) const;
 
@@ -63,12 +72,14 @@ class BreachState {
   // to `at` exactly (except for the empty reservoir, where nothing is set: the storage is left at
   // the located value, within round-off of zero, so the mass balance stays exact).
   struct Event {
+    enum class Kind { stage_end, width_cap, empty_reservoir } kind;
     Component component;
     double at;
   };
   Event stage_end(Stage stage) const;
-  Event width_cap() const { return {kBottomWidth, scene_.dam.crest_length}; }
-  Event empty_reservoir() const { return {kStorageLessInflow, 0.0}; }
+  Event width_cap() const { return {Event::Kind::width_cap, kBottomWidth, scene_.dam.crest_length}; }
+  Event empty_reservoir() const { return {Event::Kind::empty_reservoir, kStorageLessInflow, 0.0}; }
+  Stage first_stage() const;
   double distance(const Event& e, double t, const StateVector& y) const;
   double storage(double t, const StateVector& y) const {
     return y[kStorageLessInflow] + (scene_.inflow.cumulative(t) - inflow_at_start_);
@@ -77,8 +88,8 @@ class BreachState {
   double headcut_height(const StateVector& y) const;
   double invert(const StateVector& y, Stage stage) const;
   double top_width(const StateVector& y, Stage stage) const;
-  // Soil removed so far: the face strip (1), the headcut channel (2), plus the breach cut
-  // through the embankment (3, 4). Exact for the model's geometry.
+  // Soil removed so far: the pipe (0), the face strip (1), the headcut channel (2), plus the
+  // breach cut through the embankment (3, 4). Exact for the model's geometry.
   double eroded_volume(const StateVector& y, Stage stage) const;
   // Typical magnitudes of the components, for the integrator's absolute tolerances.
   StateVector scales() const;
@@ -87,6 +98,9 @@ class BreachState {
  private:
   const Scene& scene_;
   double inflow_at_start_ = 0.0;  // hydrograph.cumulative(time.start)
+  double pipe_length(const StateVector& y) const {
+    return scene_.dam.streamwise_length(y[kInvert] + 0.5 * y[kBottomWidth]);
+  }
 };
 
 }  // namespace suite::breach

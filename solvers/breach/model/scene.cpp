@@ -40,6 +40,24 @@ BreachSettings read_breach(const config::Section& b, const config::Section& h, c
   return out;
 }
 
+InternalErosion read_internal_erosion(const config::Section& s, const Embankment& dam) {
+  using config::Range;
+  InternalErosion ie;
+  ie.enabled = true;
+  ie.elevation = s.quantity("elevation", "m");
+  if (ie.elevation < dam.foundation || ie.elevation >= dam.crest())
+    s.reject("elevation",
+             fmt::format("must be between the foundation ({} m) and the crest ({} m)", dam.foundation, dam.crest()));
+  ie.initial_diameter = s.quantity("initial_diameter", "m", ie.initial_diameter, Range::positive());
+  ie.entrance_loss = s.number("entrance_loss", ie.entrance_loss, Range::at_least(0));
+  ie.collapse_fraction = s.number("collapse_fraction", ie.collapse_fraction, Range::between(0.05, 1.0));
+  if (ie.initial_diameter >= ie.collapse_diameter(dam.crest()))
+    s.reject("initial_diameter", fmt::format("is already at the collapse diameter ({:.4g} m = collapse_fraction x "
+                                             "height of the crest above the pipe)",
+                                             ie.collapse_diameter(dam.crest())));
+  return ie;
+}
+
 TimeSettings read_time(const config::Section& s) {
   using config::Range;
   TimeSettings t;
@@ -68,9 +86,10 @@ Scene Scene::read(const config::Section& root) {
   sc.reservoir = read_reservoir(root.section("reservoir"), sc.dam);
   sc.inflow = Hydrograph::read(root.section("inflow"));
   sc.breach = read_breach(root.section_or_empty("breach"), root.section_or_empty("headcut"), sc.dam, sc.soil);
+  if (auto ie = root.optional_section("internal_erosion")) sc.internal_erosion = read_internal_erosion(*ie, sc.dam);
   sc.time = read_time(root.section("time"));
-  sc.output_interval =
-      root.section_or_empty("output").quantity("interval", "s", (sc.time.end - sc.time.start) / 1000.0, Range::positive());
+  sc.output_interval = root.section_or_empty("output").quantity("interval", "s", (sc.time.end - sc.time.start) / 1000.0,
+                                                                Range::positive());
   return sc;
 }
 

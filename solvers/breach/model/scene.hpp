@@ -9,6 +9,8 @@
 //   inflow:    {type: table | constant | sine | triangular, ...}
 //   breach:    {initial_width, side_slope, face_roughness}                       # all optional
 //   headcut:   {formation_depth, jet_friction, jet_diffusion, critical_height_factor}  # optional
+//   internal_erosion: {elevation, initial_diameter, entrance_loss, collapse_fraction}   # optional:
+//              the breach starts from a pipe instead of from overtopping
 //   time:      {start, end, step: adaptive | fixed, tolerance, dt, max_step}
 //   output:    {interval}                                                         # executable only
 //
@@ -46,6 +48,22 @@ struct BreachSettings {
   HeadcutCoefficients headcut;
 };
 
+// Breach initiation by internal erosion (WinDAM C's second mode; the dissertation's synthetic
+// study started it at a quarter of the dam height): a pipe with its invert at `elevation` grows
+// at 2 kd (tau - tau_c) under the pipe-flow wall stress (pipe_flow.hpp) until its roof collapses,
+// then the breach forms from its invert with the pipe's diameter as bottom width.
+struct InternalErosion {
+  bool enabled = false;
+  double elevation = 0.0;         // m, pipe invert
+  double initial_diameter = 0.1;  // m; not published: an input (default an assumption)
+  double entrance_loss = 0.5;     // K_e of a square-edged entrance (Henderson 1966)
+  // The roof collapses when the pipe's diameter reaches this fraction of the embankment height
+  // above its invert (0.5: the roof is then as thick as the pipe is wide). An assumption: the
+  // criterion WinDAM C uses is not in the sources at hand.
+  double collapse_fraction = 0.5;
+  double collapse_diameter(double crest) const { return collapse_fraction * (crest - elevation); }
+};
+
 struct TimeSettings {
   double start = 0.0, end = 0.0;  // s
   bool adaptive = true;
@@ -61,6 +79,7 @@ struct Scene {
   Reservoir reservoir;
   Hydrograph inflow = Hydrograph::constant(0.0);
   BreachSettings breach;
+  InternalErosion internal_erosion;
   TimeSettings time;
   double output_interval = 0.0;  // s, between rows of the time series (default: 1000 rows)
 

@@ -14,6 +14,8 @@ namespace suite::breach {
 
 const char* stage_name(Stage stage) {
   switch (stage) {
+    case Stage::internal_erosion:
+      return "internal erosion";
     case Stage::surface_erosion:
       return "surface erosion";
     case Stage::headcut_advance:
@@ -150,11 +152,12 @@ double Run::locate(Step& s, double h, std::optional<BreachState::Event>& hit) {
 }
 
 void Run::apply_event(const BreachState::Event& e) {
+  using Kind = BreachState::Event::Kind;
   total_peak_.restart();
   breach_peak_.restart();
-  if (e.component == kStorageLessInflow) return;
+  if (e.kind == Kind::empty_reservoir) return;
   y_[e.component] = e.at;
-  if (e.component == kBottomWidth) {
+  if (e.kind == Kind::width_cap) {
     capped_ = true;
     return;
   }
@@ -163,9 +166,11 @@ void Run::apply_event(const BreachState::Event& e) {
       stage_ = Stage::headcut_advance;
       result_.headcut_formation_time = t_ - sc_.time.start;
       break;
-    case Stage::headcut_advance:
+    case Stage::internal_erosion:  // the pipe's roof collapses: the breach forms from its invert
+    case Stage::headcut_advance:   // the headcut reaches the upstream edge of the crest
       stage_ = Stage::breach_formation;
       result_.initiation_time = t_ - sc_.time.start;
+      capped_ = y_[kBottomWidth] >= sc_.dam.crest_length;
       failure_storage_ = model_.flows(t_, y_, stage_).storage;
       failure_level_ = model_.flows(t_, y_, stage_).level;
       break;
@@ -205,6 +210,7 @@ Result Run::run() {
   const TimeSettings& ts = sc_.time;
   t_ = ts.start;
   y_ = model_.initial();
+  stage_ = model_.first_stage();
   const double storage0 = y_[kStorageLessInflow];
   refresh();
   record();
@@ -247,7 +253,8 @@ Result Run::run() {
     ++result_.steps;
     for (double v : y_)
       if (!std::isfinite(v))
-        throw std::runtime_error(fmt::format("breach: the solution is not finite at t = {} s ({})", t_, stage_name(stage_)));
+        throw std::runtime_error(
+            fmt::format("breach: the solution is not finite at t = {} s ({})", t_, stage_name(stage_)));
     if (hit) {
       record();  // the state reaching the event, then the state after it: Q may have a kink here
       apply_event(*hit);

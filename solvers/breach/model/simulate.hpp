@@ -31,9 +31,9 @@ struct Sample {
 using Observer = std::function<void(const Sample&)>;
 
 struct Result {
-  double peak_outflow = 0.0;         // m^3/s, breach + crest + spillway
-  double time_to_peak = 0.0;         // s from time.start
-  double peak_breach_outflow = 0.0;  // m^3/s, through the breach alone
+  double peak_outflow = 0.0;                                                       // m^3/s, breach + crest + spillway
+  double time_to_peak = 0.0;                                                       // s from time.start
+  double peak_breach_outflow = 0.0;                                                // m^3/s, through the breach alone
   std::optional<double> headcut_formation_time, initiation_time, foundation_time;  // s from start
   bool failed() const { return initiation_time.has_value(); }
   Stage final_stage = Stage::surface_erosion;
