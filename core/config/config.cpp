@@ -19,6 +19,7 @@ namespace suite::config {
 
 struct State {
   std::string source;
+  std::filesystem::path base_dir;  // relative file paths in the tree are read from here
   YAML::Node root;
   std::map<std::string, std::set<std::string>> requested;  // section path -> keys asked for
   std::set<std::string> free_form;                         // subtrees passed on unchecked
@@ -470,6 +471,16 @@ std::string Section::choice(const std::string& key, const std::vector<std::strin
   return choice(key, valid);
 }
 
+std::filesystem::path Section::file(const std::string& key) const {
+  const std::string name = get<std::string>(key);
+  std::filesystem::path p(name);
+  if (p.is_relative()) p = state_->base_dir / p;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(p, ec))
+    reject(key, fmt::format("no such file ('{}'; a relative path is read from the scene file's folder)", p.string()));
+  return p;
+}
+
 YAML::Node Section::raw(const std::string& key) const {
   state_->free_form.insert(child_path(key));
   return child(key);
@@ -492,7 +503,9 @@ Config Config::from_file(const std::filesystem::path& path, const std::vector<st
   }
   std::stringstream text;
   text << in.rdbuf();
-  return Config(load(text.str(), path.string(), overrides));
+  auto state = load(text.str(), path.string(), overrides);
+  state->base_dir = path.parent_path();
+  return Config(std::move(state));
 }
 
 Section Config::root() const {

@@ -78,6 +78,10 @@ class Section {
   std::string choice(const std::string& key, const std::vector<std::string>& valid) const;
   std::string choice(const std::string& key, const std::vector<std::string>& valid, const std::string& fallback) const;
 
+  // A file named by `key`: a relative path is taken from the folder of the scene file (from the
+  // working directory for a scene given as a string). InputError if it is not a readable file.
+  std::filesystem::path file(const std::string& key) const;
+
   // A subtree passed on without checking (e.g. PETSc options); all its keys count as known.
   YAML::Node raw(const std::string& key) const;
 

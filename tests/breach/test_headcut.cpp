@@ -61,7 +61,7 @@ double scour_time_by_quadrature(double q, double drop, double d0, double d1, con
 
 TEST(Headcut, ScourTimeClosedFormAgainstQuadrature) {
   const HeadcutCoefficients c;
-  for (double tau_c : {0.0, 5.0, 40.0}) {
+  for (double tau_c : {0.0, 0.05, 5.0, 40.0}) {  // 0.05 Pa: u J < 1e-3, the series branch
     const Soil s = soil(10.0, tau_c, 5000.0);
     for (auto [q, drop, d1] : {std::tuple{0.5, 2.0, 0.8}, std::tuple{2.0, 8.0, 3.0}, std::tuple{0.05, 1.0, 0.3}}) {
       const double exact = scour_time(q, drop, 0.0, d1, s, c, g);

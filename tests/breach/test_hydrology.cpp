@@ -2,7 +2,11 @@
 // messages for bad input.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 
 #include "core/config/config.hpp"
@@ -77,6 +81,31 @@ TEST(Hydrograph, BadInputIsRejectedWithTheKey) {
             std::string::npos);
 }
 
+TEST(Hydrograph, TableFromAFileBesideTheScene) {
+  // WinDAM users keep hydrographs as two-column files in hours and cfs; the path is relative to
+  // the scene file's folder.
+  const auto dir = std::filesystem::temp_directory_path() / ("suite-hydrograph-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "storm.csv") << "# design storm\ntime_h,discharge_cfs\n0,0\n2,1200\n6\t0\n";
+  std::ofstream(dir / "dam.yaml") << "inflow:\n  type: table\n  file: storm.csv\n  columns: [h, cfs]\n";
+  auto cfg = Config::from_file(dir / "dam.yaml");
+  const auto q = Hydrograph::read(cfg.root().section("inflow"));
+  EXPECT_NEAR(q(3600.0), 600 * kCfs, 1e-12);
+  EXPECT_NEAR(q.volume(0.0, 6 * 3600.0), 0.5 * 6 * 3600.0 * 1200 * kCfs, 1e-9);
+  std::ofstream(dir / "bad.csv") << "0,0\n2,1200\n3;lots\n";
+  auto bad = Config::from_file(dir / "dam.yaml", {"inflow.file=bad.csv"});
+  EXPECT_NE(input_error_of([&] { Hydrograph::read(bad.root().section("inflow")); })
+                .find("bad.csv:3: expected two numbers (time in h, discharge in cfs), got '3 lots'"),
+            std::string::npos);
+  auto missing = Config::from_file(dir / "dam.yaml", {"inflow.file=nothere.csv"});
+  EXPECT_NE(input_error_of([&] { Hydrograph::read(missing.root().section("inflow")); }).find("no such file"),
+            std::string::npos);
+  auto unit = Config::from_file(dir / "dam.yaml", {"inflow.columns=[h, feet]"});
+  EXPECT_NE(input_error_of([&] { Hydrograph::read(unit.root().section("inflow")); }).find("key 'inflow.columns'"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(StageStorage, PowerLawAreaIsTheDerivativeAndLevelTheInverse) {
   const auto s = StageStorage::power_law(1.5e4, 2.0, 2.3);
   for (double h : {2.5, 4.0, 9.0}) {
@@ -97,6 +126,13 @@ TEST(StageStorage, TableInterpolatesExtrapolatesAndInverts) {
   EXPECT_NEAR(s.area(h1 + 1.0), 7e5 / dz, 1e-6);
   EXPECT_NEAR(s.volume(h2 + 1.0), 9e5 + 7e5 / dz, 1e-6) << "vertical walls above the last row";
   for (double v : {1e3, 2e5, 5.5e5, 1.2e6}) EXPECT_NEAR(s.volume(s.level(v)), v, 1e-9 * v);
+  // A table starting above zero storage continues its first area down to a bottom at zero.
+  const auto above = StageStorage::table({6.0, 8.0}, {1e6, 3e6});  // area 1e6 m^2 -> bottom at 5 m
+  EXPECT_NEAR(above.bottom(), 5.0, 1e-12);
+  EXPECT_NEAR(above.volume(5.5), 5e5, 1e-6);
+  EXPECT_EQ(above.volume(4.0), 0.0);
+  EXPECT_NEAR(above.level(2.5e5), 5.25, 1e-12);
+  EXPECT_NEAR(above.level(0.0), 5.0, 1e-12);
   auto bad = Config::from_string("storage:\n  type: table\n  table: [[0 m, 0 m^3], [1 m, 0 m^3]]\n", "b.yaml");
   EXPECT_NE(input_error_of([&] {
               StageStorage::read(bad.root().section("storage"));

@@ -36,11 +36,23 @@ double Embankment::downstream_face_length() const {
 }
 
 double Embankment::cut_volume(double b, double s, double zb) const {
-  // integral over u = z - z_b in [0, d] of (b + 2 s u) (c0 - k u) du, with
-  // c0 = streamwise_length(z_b), k = upstream_slope + downstream_slope, d = crest - z_b.
+  // integral over u = z - z_b in [0, d] of min(b + 2 s u, L) (c0 - k u) du, with
+  // c0 = streamwise_length(z_b), k = upstream_slope + downstream_slope, d = crest - z_b, L the
+  // crest length: the cut's width stops at the abutments.
   const double d = std::max(0.0, crest() - std::max(zb, foundation));
   const double c0 = streamwise_length(crest() - d), k = upstream_slope + downstream_slope;
-  return b * c0 * d + (2.0 * s * c0 - b * k) * d * d / 2.0 - 2.0 * s * k * d * d * d / 3.0;
+  // integral over [u0, u1] of (alpha + beta u)(c0 - k u) du
+  auto linear_times_length = [&](double alpha, double beta, double u0, double u1) {
+    auto f = [&](double u) {
+      return alpha * c0 * u + (beta * c0 - alpha * k) * u * u / 2.0 - beta * k * u * u * u / 3.0;
+    };
+    return f(u1) - f(u0);
+  };
+  const double L = crest_length;
+  if (b >= L) return linear_times_length(L, 0.0, 0.0, d);
+  const double u_full = s > 0.0 ? (L - b) / (2.0 * s) : d;  // where the width reaches L
+  if (u_full >= d) return linear_times_length(b, 2.0 * s, 0.0, d);
+  return linear_times_length(b, 2.0 * s, 0.0, u_full) + linear_times_length(L, 0.0, u_full, d);
 }
 
 }  // namespace suite::breach

@@ -34,7 +34,8 @@ struct Embankment {
   // Slope length of the downstream face.
   double downstream_face_length() const;
   // Volume of a trapezoidal cut through the whole embankment: bottom width b at level z_b,
-  // side slopes s (H:V), up to the crest. Exact (the integrand is a polynomial in z).
+  // side slopes s (H:V), up to the crest, its width limited to the crest length (the cut stops
+  // at the abutments). Exact (the integrand is piecewise polynomial in z).
   double cut_volume(double bottom_width, double side_slope, double invert) const;
 };
 

@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <numbers>
+#include <sstream>
 
+#include "core/config/units.hpp"
 #include "core/errors.hpp"
 
 namespace suite::breach {
@@ -70,9 +73,52 @@ Hydrograph Hydrograph::triangular(double peak, double base, double time_to_peak,
   return h;
 }
 
+Hydrograph Hydrograph::read_file(const std::filesystem::path& path, const std::string& time_unit,
+                                 const std::string& discharge_unit) {
+  const double ft = units::convert(1.0, time_unit, "s"), fq = units::convert(1.0, discharge_unit, "m^3/s");
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("cannot read the hydrograph file '{}'", path.string()));
+  std::vector<double> t, q;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    std::replace_if(
+        line.begin(), line.end(), [](char c) { return c == ',' || c == ';' || c == '\t'; }, ' ');
+    std::istringstream fields(line);
+    std::string first;
+    if (!(fields >> first) || first[0] == '#') continue;
+    double a = 0.0, b = 0.0;
+    const bool numeric = std::istringstream(first) >> a && fields >> b;
+    if (!numeric) {
+      if (t.empty()) continue;  // a header line
+      throw InputError(fmt::format("{}:{}: expected two numbers (time in {}, discharge in {}), got '{}'", path.string(),
+                                   number, time_unit, discharge_unit, line));
+    }
+    t.push_back(a * ft);
+    q.push_back(b * fq);
+  }
+  try {
+    return table(std::move(t), std::move(q));
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", path.string(), e.what()));
+  }
+}
+
 Hydrograph Hydrograph::read(const config::Section& s) {
   using config::Range;
   const std::string type = s.choice("type", {"table", "constant", "sine", "triangular"});
+  if (type == "table" && s.has("file")) {
+    if (s.has("table")) s.reject("file", "give either a table or a file, not both");
+    const auto columns = s.get<std::vector<std::string>>("columns", {"s", "m^3/s"});
+    if (columns.size() != 2) s.reject("columns", "give the units of the two columns, e.g. [h, cfs]");
+    const auto path = s.file("file");
+    try {
+      units::convert(1.0, columns[0], "s");
+      units::convert(1.0, columns[1], "m^3/s");
+    } catch (const InputError& e) {
+      s.reject("columns", e.what());
+    }
+    return read_file(path, columns[0], columns[1]);
+  }
   if (type == "table") {
     const auto rows = s.table("table", {"s", "m^3/s"});
     std::vector<double> t, q;

@@ -11,6 +11,12 @@
 // Scene form (section `inflow`):
 //   type: table                          type: triangular
 //   table: [[0 h, 0 cfs], [2 h, 1200 cfs]]   peak: 1200 cfs, base: 0 cfs, time_to_peak: 2 h, duration: 8 h
+// or a table from a file of two columns (comma, semicolon, tab or space separated; '#' comments
+// and one header line allowed), with the columns' units:
+//   type: table
+//   file: storm.csv          # relative to the scene file's folder
+//   columns: [h, cfs]        # default [s, m^3/s]
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -26,8 +32,10 @@ class Hydrograph {
   static Hydrograph constant(double discharge);
   static Hydrograph sine(double peak, double period);
   static Hydrograph triangular(double peak, double base, double time_to_peak, double duration);
-  // Reads the `inflow` section described above; InputError names the key.
+  // Reads the `inflow` section described above; InputError names the key (or the file and line).
   static Hydrograph read(const config::Section& section);
+  static Hydrograph read_file(const std::filesystem::path& path, const std::string& time_unit,
+                              const std::string& discharge_unit);
 
   double operator()(double t) const;  // m^3/s
   // Exact volume between t0 and t1 (m^3): piecewise-linear and sine forms integrate in closed

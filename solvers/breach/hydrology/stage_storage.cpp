@@ -54,12 +54,12 @@ StageStorage StageStorage::read(const config::Section& sec) {
 }
 
 double StageStorage::bottom() const {
-  return is_table_ ? levels_.front() : bottom_;
+  return is_table_ ? levels_.front() - volumes_.front() / area(levels_.front()) : bottom_;
 }
 
 double StageStorage::volume(double h) const {
   if (!is_table_) return h <= bottom_ ? 0.0 : alpha_ * std::pow(h - bottom_, exponent_);
-  if (h <= levels_.front()) return volumes_.front();
+  if (h <= levels_.front()) return std::max(0.0, volumes_.front() - area(h) * (levels_.front() - h));
   if (h >= levels_.back()) return volumes_.back() + area(h) * (h - levels_.back());
   const auto i = static_cast<std::size_t>(std::upper_bound(levels_.begin(), levels_.end(), h) - levels_.begin());
   return volumes_[i - 1] + (volumes_[i] - volumes_[i - 1]) * (h - levels_[i - 1]) / (levels_[i] - levels_[i - 1]);
@@ -74,7 +74,7 @@ double StageStorage::area(double h) const {
 
 double StageStorage::level(double v) const {
   if (!is_table_) return v <= 0.0 ? bottom_ : bottom_ + std::pow(v / alpha_, 1.0 / exponent_);
-  if (v <= volumes_.front()) return levels_.front();
+  if (v <= volumes_.front()) return levels_.front() - (volumes_.front() - std::max(v, 0.0)) / area(levels_.front());
   if (v >= volumes_.back()) return levels_.back() + (v - volumes_.back()) / area(levels_.back());
   const auto i = static_cast<std::size_t>(std::upper_bound(volumes_.begin(), volumes_.end(), v) - volumes_.begin());
   return levels_[i - 1] + (levels_[i] - levels_[i - 1]) * (v - volumes_[i - 1]) / (volumes_[i] - volumes_[i - 1]);

@@ -6,7 +6,9 @@
 //   power law: V = alpha (H - z0)^m for H >= z0 (alpha in m^(3-m), m >= 1; m = 1 is a
 //              vertical-walled basin of area alpha, m = 3 a cone-like valley)
 //   table:     (H, V) rows with H and V increasing; V linear between rows, so A is constant
-//              between rows; above the last row the last area continues (vertical walls)
+//              between rows; above the last row the last area continues (vertical walls), and
+//              below the first row the first area continues down to zero storage (a table that
+//              starts at a spillway crest with storage below it still has a bottom)
 // Scene form (section `reservoir.storage`):
 //   type: power_law            type: table
 //   alpha: 12000 m^2 ...       table: [[0 m, 0 m^3], [4 m, 2e5 m^3], [8 m, 9e5 m^3]]

@@ -44,6 +44,7 @@ Flows BreachState::flows(double t, const StateVector& y, Stage stage) const {
   f.inflow = sc.inflow(t);
   f.storage = storage(t, y);
   f.level = sc.reservoir.storage.level(std::max(f.storage, 0.0));
+  if (f.storage <= 0.0) return f;  // an empty reservoir releases nothing, whatever lies below it
   // Before the breach forms, the concentrated flow passes a rectangular notch at crest level;
   // afterwards a trapezoid whose side slopes carry flow too, but only below the crest level: the
   // flow above it is crest flow, over the crest length not taken by the breach's top width. (The
@@ -145,7 +146,12 @@ double BreachState::eroded_volume(const StateVector& y, Stage stage) const {
   const double b0 = scene_.breach.initial_width;
   if (stage == Stage::internal_erosion)
     return std::numbers::pi / 4.0 * y[kBottomWidth] * y[kBottomWidth] * pipe_length(y);
-  if (stage == Stage::surface_erosion) return b0 * y[kFaceErosion] * dam.downstream_face_length();
+  // The face strip of depth min(erosion, formation depth): all of the face in stage 1, the part
+  // upstream of the headcut afterwards.
+  if (stage == Stage::surface_erosion) return b0 * std::max(y[kFaceErosion], 0.0) * dam.downstream_face_length();
+  const double per_x = std::sqrt(1.0 + 1.0 / (dam.downstream_slope * dam.downstream_slope));  // slope length / dx
+  const double strip =
+      b0 * scene_.breach.formation_depth * std::max(dam.x_crest_downstream() - y[kHeadcutPosition], 0.0) * per_x;
   // The headcut channel: width b0 from the toe to the headcut, floor at foundation - formation
   // depth, up to the embankment surface (or, once the breach cut exists, up to its invert).
   const double floor = dam.foundation - scene_.breach.formation_depth;
@@ -164,7 +170,7 @@ double BreachState::eroded_volume(const StateVector& y, Stage stage) const {
   double channel = 0.0;  // the integrand is linear between the kinks in xs: the trapezoid rule is exact
   for (std::size_t i = 1; i < xs.size(); ++i) channel += 0.5 * (depth(xs[i - 1]) + depth(xs[i])) * (xs[i] - xs[i - 1]);
   channel *= b0;
-  return channel + (cut ? dam.cut_volume(y[kBottomWidth], scene_.breach.side_slope, y[kInvert]) : 0.0);
+  return strip + channel + (cut ? dam.cut_volume(y[kBottomWidth], scene_.breach.side_slope, y[kInvert]) : 0.0);
 }
 
 StateVector BreachState::scales() const {

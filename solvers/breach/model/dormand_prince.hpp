@@ -14,6 +14,16 @@ struct DormandPrinceStep {
   Vec y;      // solution at t + h
   Vec error;  // y5 - y4
   Vec f_end;  // f(t + h, y)
+  // Dense output (Hairer, Norsett & Wanner, sec. II.6; the continuous extension of DOPRI5):
+  // y(t + theta h) = r0 + theta (r1 + (1 - theta) (r2 + theta (r3 + (1 - theta) r4))), 4th order.
+  std::array<Vec, 5> r;
+  Vec at(double theta) const {
+    Vec out;
+    const double u = 1.0 - theta;
+    for (std::size_t i = 0; i < N; ++i)
+      out[i] = r[0][i] + theta * (r[1][i] + u * (r[2][i] + theta * (r[3][i] + u * r[4][i])));
+    return out;
+  }
 };
 
 // f(t, y, dydt). k1 = f(t, y0).
@@ -50,6 +60,17 @@ DormandPrinceStep<N> dormand_prince_step(F&& f, double t, const std::array<doubl
   f(t + h, out.y, out.f_end);
   for (std::size_t i = 0; i < N; ++i)
     out.error[i] = h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * out.f_end[i]);
+  static constexpr double d1 = -12715105075.0 / 11282082432.0, d3 = 87487479700.0 / 32700410799.0,
+                          d4 = -10690763975.0 / 1880347072.0, d5 = 701980252875.0 / 199316789632.0,
+                          d6 = -1453857185.0 / 822651844.0, d7 = 69997945.0 / 29380423.0;
+  for (std::size_t i = 0; i < N; ++i) {
+    const double dy = out.y[i] - y0[i], b = h * k1[i] - dy;
+    out.r[0][i] = y0[i];
+    out.r[1][i] = dy;
+    out.r[2][i] = b;
+    out.r[3][i] = dy - h * out.f_end[i] - b;
+    out.r[4][i] = h * (d1 * k1[i] + d3 * k3[i] + d4 * k4[i] + d5 * k5[i] + d6 * k6[i] + d7 * out.f_end[i]);
+  }
   return out;
 }
 

@@ -88,8 +88,9 @@ Scene Scene::read(const config::Section& root) {
   sc.breach = read_breach(root.section_or_empty("breach"), root.section_or_empty("headcut"), sc.dam, sc.soil);
   if (auto ie = root.optional_section("internal_erosion")) sc.internal_erosion = read_internal_erosion(*ie, sc.dam);
   sc.time = read_time(root.section("time"));
-  sc.output_interval = root.section_or_empty("output").quantity("interval", "s", (sc.time.end - sc.time.start) / 1000.0,
-                                                                Range::positive());
+  const double span = sc.time.end - sc.time.start;
+  sc.output_interval =
+      root.section_or_empty("output").quantity("interval", "s", span / 1000.0, Range::at_least(span / 1e6));
   return sc;
 }
 

@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include "solvers/breach/model/dormand_prince.hpp"
+#include "solvers/breach/model/peak_search.hpp"
 
 namespace suite::breach {
 
@@ -29,36 +31,6 @@ const char* stage_name(Stage stage) {
 }
 
 namespace {
-
-// The maximum of a sampled curve, refined by the parabola through the three samples around a
-// sampled maximum (third-order accurate in the spacing, so the peak does not depend on where
-// the steps happen to fall).
-class PeakTracker {
- public:
-  void add(double t, double q) {
-    if (q > value_) value_ = q, time_ = t;
-    t_[0] = t_[1], t_[1] = t_[2], t_[2] = t;
-    q_[0] = q_[1], q_[1] = q_[2], q_[2] = q;
-    if (++count_ < 3 || !(q_[1] >= q_[0] && q_[1] > q_[2])) return;
-    const double d0 = (q_[1] - q_[0]) / (t_[1] - t_[0]), d1 = (q_[2] - q_[1]) / (t_[2] - t_[1]);
-    const double curvature = (d1 - d0) / (t_[2] - t_[0]);  // half the second derivative
-    if (!(curvature < 0.0)) return;
-    const double tv = 0.5 * (t_[0] + t_[1]) - d0 / (2.0 * curvature);
-    if (tv < t_[0] || tv > t_[2]) return;
-    const double qv = q_[1] + (tv - t_[1]) * (d0 + curvature * (tv - t_[0]));
-    // Accept only a refinement of the order of the sampled variation (no overshoot at kinks).
-    if (qv > value_ && qv <= q_[1] + (q_[1] - std::min(q_[0], q_[2]))) value_ = qv, time_ = tv;
-  }
-  // After a kink (an event): the next parabola must not span it.
-  void restart() { count_ = 0; }
-  double value() const { return value_; }
-  double time() const { return time_; }
-
- private:
-  double t_[3] = {0, 0, 0}, q_[3] = {0, 0, 0};
-  int count_ = 0;
-  double value_ = -1.0, time_ = 0.0;
-};
 
 class Run {
  public:
@@ -104,7 +76,8 @@ class Run {
   double locate(Step& s, double h, std::optional<BreachState::Event>& hit);
   void apply_event(const BreachState::Event& e);
   void refresh() { model_.derivatives(t_, y_, stage_, capped_, k1_), ++result_.evaluations; }
-  void record();
+  // Feeds the accepted step [t_, t_ + h] to the peak searches.
+  void record(const Step& s, double h);
   void emit();
 
   const Scene& sc_;
@@ -116,7 +89,15 @@ class Run {
   Stage stage_ = Stage::surface_erosion;
   bool capped_ = false;
   Result result_;
-  PeakTracker total_peak_, breach_peak_;
+  PeakSearch total_peak_, breach_peak_;
+  // The last accepted step, for a peak that straddles a step boundary; invalid after an event.
+  struct Span {
+    Step step;
+    double t0 = 0.0, h = 0.0;
+    Stage stage = Stage::surface_erosion;
+    Flows mid, end;
+    bool valid = false;
+  } span_;
   double failure_storage_ = 0.0, failure_level_ = 0.0;
 };
 
@@ -145,7 +126,7 @@ double Run::locate(Step& s, double h, std::optional<BreachState::Event>& hit) {
         side = 1;
       }
     }
-    if (b < first) first = b, hit = ev[i];
+    if (!hit || b < first) first = b, hit = ev[i];
   }
   if (hit) s = step(first);
   return first;
@@ -153,8 +134,7 @@ double Run::locate(Step& s, double h, std::optional<BreachState::Event>& hit) {
 
 void Run::apply_event(const BreachState::Event& e) {
   using Kind = BreachState::Event::Kind;
-  total_peak_.restart();
-  breach_peak_.restart();
+  span_.valid = false;  // a kink: no peak search across it
   if (e.kind == Kind::empty_reservoir) return;
   y_[e.component] = e.at;
   if (e.kind == Kind::width_cap) {
@@ -183,10 +163,35 @@ void Run::apply_event(const BreachState::Event& e) {
   }
 }
 
-void Run::record() {
-  const Flows f = model_.flows(t_, y_, stage_);
-  total_peak_.add(t_, f.total());
-  breach_peak_.add(t_, f.breach);
+void Run::record(const Step& s, double h) {
+  // Samples at the ends and the middle of the step; a maximum inside it, or at its start when q
+  // rose through the end of the previous step (no event between), is refined on the dense output
+  // (adaptive steps only: their error control keeps the interpolant close to the solution).
+  const double t0 = t_, tm = t_ + 0.5 * h;
+  const Flows f0 = span_.valid ? span_.end : model_.flows(t0, y_, stage_);
+  const Span current{s, t0, h, stage_, model_.flows(tm, s.at(0.5), stage_), model_.flows(t0 + h, s.y, stage_), true};
+  auto at = [this](const Span& sp, double t) { return model_.flows(t, sp.step.at((t - sp.t0) / sp.h), sp.stage); };
+  auto track = [&](PeakSearch& peak, auto quantity) {
+    const double q0 = quantity(f0), qm = quantity(current.mid), q1 = quantity(current.end);
+    peak.sample(t0, q0);
+    peak.sample(t0 + h, q1);
+    // Without error control (fixed steps) the interpolant is not to be trusted between the ends.
+    if (!sc_.time.adaptive) return;
+    peak.sample(tm, qm);
+    auto on = [&](const Span& sp) { return [&, sp_ptr = &sp](double t) { return quantity(at(*sp_ptr, t)); }; };
+    // A search can raise the running peak only if the bracket's top sample, plus the spread of
+    // its samples (a bound on what a unimodal bump adds between them), reaches it.
+    auto worth = [&](double top, double low) { return top + (top - low) >= peak.value(); };
+    if (qm > q0 && qm >= q1 && worth(qm, std::min(q0, q1))) peak.search(on(current), t0, t0 + h);
+    if (span_.valid && q0 > qm && quantity(span_.end) > quantity(span_.mid) &&
+        worth(q0, std::min(qm, quantity(span_.mid)))) {
+      peak.search(on(span_), span_.t0 + 0.5 * span_.h, t0);
+      peak.search(on(current), t0, tm);
+    }
+  };
+  track(total_peak_, [](const Flows& f) { return f.total(); });
+  track(breach_peak_, [](const Flows& f) { return f.breach; });
+  span_ = current;
 }
 
 void Run::emit() {
@@ -213,17 +218,30 @@ Result Run::run() {
   stage_ = model_.first_stage();
   const double storage0 = y_[kStorageLessInflow];
   refresh();
-  record();
-  emit();
-  // Stops: the hydrograph's kinks, output times (with an observer), the end.
+  {
+    const Flows f = model_.flows(t_, y_, stage_);
+    total_peak_.sample(t_, f.total());
+    breach_peak_.sample(t_, f.breach);
+  }
+  // Stops: the hydrograph's kinks, output times (with an observer), the end. A time within
+  // round-off of a stop counts as on it.
   std::vector<double> kinks;
   for (double b : sc_.inflow.breakpoints())
     if (b > ts.start && b < ts.end) kinks.push_back(b);
   std::size_t next_kink = 0;
-  long output_index = 1;
+  long output_index = 0;
+  double last_emitted = -std::numeric_limits<double>::infinity();
   auto next_output = [&] { return observe_ ? ts.start + output_index * sc_.output_interval : ts.end; };
+  const double eps = 1e-13 * std::max(std::abs(ts.start), std::abs(ts.end));
   double h = ts.adaptive ? std::min(ts.max_step, 1e-4 * (ts.end - ts.start)) : ts.fixed_step;
-  while (t_ < ts.end) {
+  for (;;) {
+    while (next_kink < kinks.size() && kinks[next_kink] <= t_ + eps) ++next_kink;
+    if (observe_ && next_output() <= t_ + eps) {
+      emit();
+      last_emitted = t_;
+      ++output_index;
+    }
+    if (t_ >= ts.end - eps) break;
     const double stop = std::min({ts.end, next_kink < kinks.size() ? kinks[next_kink] : ts.end, next_output()});
     const bool to_stop = h >= stop - t_;
     const double trial = to_stop ? stop - t_ : h;
@@ -231,23 +249,22 @@ Result Run::run() {
     if (ts.adaptive) {
       const double err = error_norm(s, trial);
       if (!(err <= 1.0)) {
-        if (!std::isfinite(err) && trial < 1e-12 * (ts.end - ts.start))
-          throw std::runtime_error(fmt::format("breach: the solution is not finite at t = {} s ({}), step {} s", t_,
-                                               stage_name(stage_), trial));
         h = trial * (std::isfinite(err) ? std::max(0.2, 0.9 * std::pow(err, -0.2)) : 0.2);
         ++result_.rejected_steps;
         if (h < 1e-12 * (ts.end - ts.start))
-          throw std::runtime_error(
-              fmt::format("breach: step size collapsed to {} s at t = {} s ({})", h, t_, stage_name(stage_)));
+          throw std::runtime_error(fmt::format("breach: step size collapsed to {} s at t = {} s ({}{})", h, t_,
+                                               stage_name(stage_), std::isfinite(err) ? "" : ", non-finite solution"));
         continue;
       }
-      h = trial * std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(err, 1e-10), -0.2)));
-      h = std::min(h, ts.max_step);
+      // A step cut short to reach a stop says little about the step the solution allows:
+      // never let it shrink the next one.
+      const double proposed = trial * std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(err, 1e-10), -0.2)));
+      h = std::min(to_stop ? std::max(h, proposed) : proposed, ts.max_step);
     }
     std::optional<BreachState::Event> hit;
     const double taken = locate(s, trial, hit);
-    const bool landed = !hit && to_stop;
-    t_ = landed ? stop : t_ + taken;
+    record(s, taken);
+    t_ = !hit && to_stop ? stop : t_ + taken;
     y_ = s.y;
     k1_ = s.f_end;
     ++result_.steps;
@@ -256,20 +273,15 @@ Result Run::run() {
         throw std::runtime_error(
             fmt::format("breach: the solution is not finite at t = {} s ({})", t_, stage_name(stage_)));
     if (hit) {
-      record();  // the state reaching the event, then the state after it: Q may have a kink here
       apply_event(*hit);
       refresh();
-    }
-    record();
-    if (landed) {
-      if (next_kink < kinks.size() && stop == kinks[next_kink]) ++next_kink, refresh();
-      if (observe_ && stop == next_output()) {
-        emit();
-        ++output_index;
-      }
+      const Flows f = model_.flows(t_, y_, stage_);
+      total_peak_.sample(t_, f.total());
+      breach_peak_.sample(t_, f.breach);
     }
     if (!ts.adaptive) h = ts.fixed_step;
   }
+  if (observe_ && last_emitted != t_) emit();
 
   // The summary.
   Result& r = result_;
