@@ -1,0 +1,97 @@
+// study: parameter studies over the suite's models (spec/studies.md, issue 6).
+//   study run SPEC.yaml [key.path=value ...] [--out DIR] [--log-level LEVEL]
+//   study resume DIR [--retry-failed] [--log-level LEVEL]
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/config/config.hpp"
+#include "core/errors.hpp"
+#include "core/log/logger.hpp"
+#include "core/mpi/comm.hpp"
+#include "core/mpi/environment.hpp"
+#include "core/run/guarded_main.hpp"
+#include "studies/run/study.hpp"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage:\n"
+    "  study run SPEC.yaml [key.path=value ...] [--out DIR] [--log-level LEVEL]\n"
+    "      generate the design, evaluate the model at every point, write DIR/tabular.dat and tabular.csv\n"
+    "      (DIR defaults to study-<SPEC name>)\n"
+    "  study resume DIR [--retry-failed] [--log-level LEVEL]\n"
+    "      continue a killed study: runs only what its ledger does not hold (and, with --retry-failed,\n"
+    "      what failed)\n";
+
+struct Arguments {
+  std::string command, target, out, log_level = "info";
+  std::vector<std::string> overrides;
+  bool retry_failed = false;
+};
+
+Arguments parse(int argc, char** argv) {
+  Arguments a;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty()) throw suite::InputError(std::string("no command given\n") + kUsage);
+  a.command = args[0];
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& s = args[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= args.size()) throw suite::InputError(s + " needs a value");
+      return args[++i];
+    };
+    if (s == "--out") {
+      a.out = value();
+    } else if (s == "--log-level") {
+      a.log_level = value();
+    } else if (s == "--retry-failed") {
+      a.retry_failed = true;
+    } else if (suite::config::looks_like_override(s)) {
+      a.overrides.push_back(s);
+    } else if (a.target.empty() && s.rfind("--", 0) != 0) {
+      a.target = s;
+    } else {
+      throw suite::InputError(fmt::format("unexpected argument '{}'\n{}", s, kUsage));
+    }
+  }
+  return a;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  suite::mpi::Environment env(argc, argv);
+  const suite::mpi::Comm world(MPI_COMM_WORLD);
+  return suite::guarded_main(world, [&] {
+    if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+      if (world.is_root()) std::fputs(kUsage, stdout);
+      return 0;
+    }
+    const Arguments a = parse(argc, argv);
+    if (world.size() != 1)
+      throw suite::InputError(
+          "study runs as one process (its evaluations in threads); the MPI and Slurm "
+          "backends come with issue 6's next part");
+    suite::Logger log(world, "study", {suite::parse_log_level(a.log_level), false, nullptr});
+    if (a.command == "run") {
+      if (a.target.empty()) throw suite::InputError(std::string("study run needs a specification file\n") + kUsage);
+      const auto spec = suite::config::Config::from_file(a.target, a.overrides);
+      const std::string out = a.out.empty() ? "study-" + std::filesystem::path(a.target).stem().string() : a.out;
+      suite::studies::run_study(spec, {out, false, a.retry_failed}, log);
+      return 0;
+    }
+    if (a.command == "resume") {
+      if (a.target.empty()) throw suite::InputError(std::string("study resume needs the study folder\n") + kUsage);
+      if (!a.overrides.empty() || !a.out.empty())
+        throw suite::InputError("study resume takes the study folder only: the specification is its study.yaml");
+      const std::filesystem::path dir = a.target;
+      if (!std::filesystem::exists(dir / "study.yaml"))
+        throw suite::InputError(fmt::format("'{}' is not a study folder (no study.yaml)", dir.string()));
+      const auto spec = suite::config::Config::from_file(dir / "study.yaml");
+      suite::studies::run_study(spec, {dir, true, a.retry_failed}, log);
+      return 0;
+    }
+    throw suite::InputError(fmt::format("unknown command '{}'\n{}", a.command, kUsage));
+  });
+}

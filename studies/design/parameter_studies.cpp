@@ -1,0 +1,140 @@
+#include "studies/design/parameter_studies.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace suite::studies {
+
+std::vector<Point> multidim_points(const std::vector<Variable>& vars, const std::vector<long long>& partitions) {
+  const std::size_t n = vars.size();
+  std::vector<double> start(n), step(n);
+  std::size_t count = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const long long p = partitions[i];
+    start[i] = p ? vars[i].lower : vars[i].initial;
+    step[i] = p ? (vars[i].upper - vars[i].lower) / static_cast<double>(p) : 0.0;
+    count *= static_cast<std::size_t>(p + 1);
+  }
+  std::vector<Point> points;
+  points.reserve(count);
+  std::vector<long long> index(n, 0);
+  for (std::size_t e = 0; e < count; ++e) {
+    Point x(n);
+    for (std::size_t i = 0; i < n; ++i) x[i] = start[i] + static_cast<double>(index[i]) * step[i];
+    points.push_back(std::move(x));
+    for (std::size_t i = 0; i < n; ++i) {  // first index fastest
+      if (++index[i] <= partitions[i]) break;
+      index[i] = 0;
+    }
+  }
+  return points;
+}
+
+std::vector<Point> vector_points(const Point& initial, const Point& step, long long num_steps) {
+  std::vector<Point> points;
+  for (long long k = 0; k <= num_steps; ++k) {
+    Point x(initial.size());
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = initial[i] + static_cast<double>(k) * step[i];
+    points.push_back(std::move(x));
+  }
+  return points;
+}
+
+std::vector<Point> centered_points(const Point& initial, const Point& step, const std::vector<long long>& steps) {
+  std::vector<Point> points{initial};
+  for (std::size_t i = 0; i < initial.size(); ++i)
+    for (long long k = -steps[i]; k <= steps[i]; ++k) {
+      if (k == 0) continue;
+      Point x = initial;
+      x[i] = initial[i] + static_cast<double>(k) * step[i];
+      points.push_back(std::move(x));
+    }
+  return points;
+}
+
+namespace {
+
+// One value for every variable, or one value meaning all of them.
+template <class T>
+std::vector<T> per_variable(const config::Section& s, const std::string& key, std::size_t n) {
+  if (s.has(key)) {
+    try {
+      const auto one = s.get<T>(key);
+      return std::vector<T>(n, one);
+    } catch (const InputError&) {
+    }
+  }
+  auto many = s.get<std::vector<T>>(key);
+  if (many.size() != n) s.reject(key, fmt::format("give one value, or one per variable ({}), not {}", n, many.size()));
+  return many;
+}
+
+std::vector<Point> read_list(const config::Section& s, std::size_t n) {
+  std::vector<Point> points;
+  if (s.has("file")) {
+    const auto path = s.file("file");
+    std::ifstream in(path);
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+      for (char& c : line)
+        if (c == ',' || c == ';' || c == '\t') c = ' ';
+      std::istringstream fields(line);
+      Point x;
+      double v;
+      while (fields >> v) x.push_back(v);
+      if (x.empty() && (line.find_first_not_of(' ') == std::string::npos || line[line.find_first_not_of(' ')] == '#'))
+        continue;
+      if (x.empty() && points.empty()) continue;  // a header line
+      if (x.size() != n || !fields.eof())
+        throw InputError(
+            fmt::format("{}:{}: expected {} numbers (one per variable), got '{}'", path.string(), number, n, line));
+      points.push_back(std::move(x));
+    }
+  } else {
+    const auto flat = s.get<std::vector<double>>("points");
+    if (flat.empty() || flat.size() % n) s.reject("points", fmt::format("give points of {} values each", n));
+    for (std::size_t i = 0; i < flat.size(); i += n) points.emplace_back(flat.begin() + i, flat.begin() + i + n);
+  }
+  if (points.empty()) s.reject(s.has("file") ? "file" : "points", "the list holds no points");
+  return points;
+}
+
+}  // namespace
+
+Design read_design(const config::Section& s, const std::vector<Variable>& vars) {
+  const std::size_t n = vars.size();
+  Design d;
+  d.method = s.choice("type", {"multidim", "vector", "centered", "list"});
+  Point initial;
+  for (const auto& v : vars) initial.push_back(v.initial);
+  if (d.method == "multidim") {
+    const auto p = per_variable<long long>(s, "partitions", n);
+    for (long long pi : p)
+      if (pi < 0) s.reject("partitions", "must be >= 0");
+    d.points = multidim_points(vars, p);
+  } else if (d.method == "vector") {
+    const long long steps = s.integer("num_steps", 10, 0, 1000000);
+    Point step(n);
+    if (s.has("final_point") == s.has("step_vector"))
+      s.reject(s.has("final_point") ? "step_vector" : "final_point", "give either final_point or step_vector");
+    if (s.has("final_point")) {
+      const auto fin = per_variable<double>(s, "final_point", n);
+      for (std::size_t i = 0; i < n; ++i) step[i] = steps ? (fin[i] - initial[i]) / static_cast<double>(steps) : 0.0;
+    } else {
+      step = per_variable<double>(s, "step_vector", n);
+    }
+    d.points = vector_points(initial, step, steps);
+  } else if (d.method == "centered") {
+    d.points = centered_points(initial, per_variable<double>(s, "step_vector", n),
+                               per_variable<long long>(s, "steps_per_variable", n));
+  } else {
+    d.points = read_list(s, n);
+  }
+  return d;
+}
+
+}  // namespace suite::studies

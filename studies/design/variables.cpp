@@ -1,0 +1,39 @@
+#include "studies/design/variables.hpp"
+
+#include <fmt/format.h>
+
+#include <cctype>
+#include <set>
+
+namespace suite::studies {
+
+std::vector<Variable> read_variables(const config::Section& root) {
+  std::vector<Variable> out;
+  std::set<std::string> seen;
+  for (const auto& s : root.sections("variables")) {
+    Variable v;
+    v.name = s.get<std::string>("name");
+    const bool identifier =
+        !v.name.empty() && (std::isalpha(static_cast<unsigned char>(v.name[0])) || v.name[0] == '_');
+    for (char c : v.name)
+      if (!identifier || !(std::isalnum(static_cast<unsigned char>(c)) || c == '_'))
+        s.reject("name",
+                 "must be an identifier (letters, digits, _; not starting with a digit) so templates can use it");
+    if (!seen.insert(v.name).second) s.reject("name", "is used by another variable");
+    v.lower = s.number("lower", config::Range::any());
+    v.upper = s.number("upper", config::Range::any());
+    if (v.upper < v.lower) s.reject("upper", fmt::format("is below lower ({})", v.lower));
+    v.initial = s.number("initial", 0.5 * (v.lower + v.upper), config::Range::between(v.lower, v.upper));
+    out.push_back(v);
+  }
+  if (out.empty()) root.reject("variables", "the study needs at least one variable");
+  return out;
+}
+
+std::vector<std::string> names(const std::vector<Variable>& variables) {
+  std::vector<std::string> n;
+  for (const auto& v : variables) n.push_back(v.name);
+  return n;
+}
+
+}  // namespace suite::studies

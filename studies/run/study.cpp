@@ -1,0 +1,174 @@
+#include "studies/run/study.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <sched.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
+#include "studies/dakota/tabular_file.hpp"
+#include "studies/design/parameter_studies.hpp"
+#include "studies/ledger/ledger.hpp"
+#include "studies/model/model.hpp"
+#include "studies/template/expression.hpp"
+
+namespace suite::studies {
+
+int available_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return 1;
+  return std::max(1, CPU_COUNT(&set));
+}
+
+namespace {
+
+std::string host_name() {
+  char host[256] = {0};
+  gethostname(host, sizeof host - 1);
+  return host;
+}
+
+// The latest entry of each evaluation in the ledger.
+std::map<long, LedgerEntry> latest(const std::filesystem::path& ledger) {
+  std::map<long, LedgerEntry> by_id;
+  for (auto& e : Ledger::read(ledger)) by_id[e.eval_id] = std::move(e);
+  return by_id;
+}
+
+void write_tables(const std::filesystem::path& out, const std::vector<std::string>& vars,
+                  const std::vector<std::string>& responses, const std::map<long, LedgerEntry>& entries) {
+  std::ostringstream dat;
+  {
+    dakota::TabularWriter tab(dat, vars, responses);
+    for (const auto& [id, e] : entries)
+      if (e.ok) tab.row(id, "", e.inputs, e.responses);
+  }
+  io::write_file_atomic(out / "tabular.dat", dat.str());
+  std::string csv = fmt::format("eval_id,status,{},{},reason\n", fmt::join(vars, ","), fmt::join(responses, ","));
+  for (const auto& [id, e] : entries) {
+    csv += fmt::format("{},{}", id, e.ok ? "ok" : "failed");
+    for (double x : e.inputs) fmt::format_to(std::back_inserter(csv), ",{}", format_number(x));
+    for (double x : e.responses)
+      fmt::format_to(std::back_inserter(csv), ",{}", std::isfinite(x) ? fmt::format("{:.17g}", x) : "");
+    std::string reason = e.reason;
+    for (char& c : reason)
+      if (c == '"') c = '\'';
+    fmt::format_to(std::back_inserter(csv), ",\"{}\"\n", reason);
+  }
+  io::write_file_atomic(out / "tabular.csv", csv);
+}
+
+}  // namespace
+
+StudyCounts run_study(const config::Config& spec, const StudyOptions& options, Logger& log) {
+  const auto root = spec.root();
+  const auto variables = read_variables(root);
+  const auto var_names = names(variables);
+  const Design design = read_design(root.section("method"), variables);
+  const auto model = read_model(root.section("model"), var_names);
+  const auto execution = root.section_or_empty("execution");
+  const int cores = available_cores();
+  const int concurrency = static_cast<int>(execution.integer("concurrency", cores, 1, 4096));
+  spec.finish();
+
+  const auto& out = options.out;
+  std::filesystem::create_directories(out);
+  const auto ledger_path = out / "ledger.jsonl";
+  if (!options.resume && std::filesystem::exists(ledger_path))
+    throw InputError(
+        fmt::format("'{}' already holds a study (ledger.jsonl); continue it with `study resume {}` or "
+                    "choose another --out",
+                    out.string(), out.string()));
+  if (!options.resume) spec.write_effective(out / "study.yaml");
+
+  StudyCounts counts;
+  counts.points = design.points.size();
+  auto done = latest(ledger_path);
+  std::vector<long> pending;
+  for (std::size_t i = 0; i < design.points.size(); ++i) {
+    const long id = static_cast<long>(i) + 1;
+    const auto it = done.find(id);
+    if (it != done.end()) {
+      if (it->second.hash != input_hash(var_names, design.points[i]))
+        throw InputError(
+            fmt::format("{}: evaluation {} was run with other inputs than the study now gives; the "
+                        "design changed since the ledger was written (start a new study folder)",
+                        ledger_path.string(), id));
+      if (it->second.ok || !options.retry_failed) {
+        ++counts.reused;
+        continue;
+      }
+    }
+    pending.push_back(id);
+  }
+  const int threads = std::max(1, std::min<int>(concurrency, static_cast<int>(pending.size())));
+  log.info("{} study: {} points, {} to run ({} from the ledger), {} at a time{}", design.method, counts.points,
+           pending.size(), counts.reused, threads, concurrency > cores ? " (more than the cores available)" : "");
+
+  Ledger ledger(ledger_path);
+  std::mutex mutex;
+  std::atomic<std::size_t> next{0};
+  std::size_t finished = 0, failed = 0;
+  const std::string host = host_name();
+  std::exception_ptr error;
+  auto worker = [&] {
+    try {
+      for (std::size_t k; (k = next++) < pending.size();) {
+        const long id = pending[k];
+        const auto& x = design.points[static_cast<std::size_t>(id - 1)];
+        std::map<std::string, double> values;
+        for (std::size_t i = 0; i < x.size(); ++i) values[var_names[i]] = x[i];
+        const auto t0 = std::chrono::steady_clock::now();
+        const Outcome o = model->evaluate(values);
+        LedgerEntry e{id,
+                      x,
+                      input_hash(var_names, x),
+                      o.ok,
+                      o.reason,
+                      o.responses,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                      host};
+        const std::lock_guard lock(mutex);
+        ledger.append(e);
+        ++finished;
+        if (!o.ok) {
+          ++failed;
+          log.warn("evaluation {} failed: {}", id, o.reason);
+        }
+        if (finished % std::max<std::size_t>(1, pending.size() / 10) == 0 || finished == pending.size())
+          log.info("{} / {} evaluations done ({} failed)", finished, pending.size(), failed);
+      }
+    } catch (...) {
+      const std::lock_guard lock(mutex);
+      if (!error) error = std::current_exception();
+      next = pending.size();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+
+  const auto all = latest(ledger_path);
+  write_tables(out, var_names, model->responses(), all);
+  counts.run = finished;
+  for (const auto& [id, e] : all)
+    if (!e.ok) ++counts.failed;
+  log.info("study done: {} evaluations, {} failed; {}", all.size(), counts.failed, (out / "tabular.dat").string());
+  return counts;
+}
+
+}  // namespace suite::studies

@@ -1,0 +1,42 @@
+#pragma once
+// A study from its specification to its table (spec/studies.md):
+//
+//   variables: [...]            design/variables.hpp
+//   method:    {type: ...}      design/parameter_studies.hpp
+//   model:     {type: breach}   model/breach_model.hpp
+//   execution: {concurrency: N} default: the cores this process may use (its CPU affinity,
+//                               which Slurm and mpiexec set from the allocation)
+//
+// writes into the study folder
+//   study.yaml          the specification as run (defaults included); `study resume` reads it
+//   ledger.jsonl        every evaluation as it ends (ledger/ledger.hpp)
+//   tabular.dat         Dakota's annotated tabular format, successful evaluations in id order
+//   tabular.csv         every evaluation: eval_id, status, variables, responses, reason
+// A failed evaluation is recorded with its reason and never stops the others. A resumed study
+// reruns nothing that finished (and, with retry_failed, reruns what failed).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/config/config.hpp"
+#include "core/log/logger.hpp"
+
+namespace suite::studies {
+
+struct StudyOptions {
+  std::filesystem::path out;
+  bool resume = false;
+  bool retry_failed = false;
+};
+
+struct StudyCounts {
+  std::size_t points = 0, reused = 0, run = 0, failed = 0;
+};
+
+// Throws InputError for a bad specification or a folder that holds another study.
+StudyCounts run_study(const config::Config& spec, const StudyOptions& options, Logger& log);
+
+// Cores this process may run on (sched_getaffinity), at least 1.
+int available_cores();
+
+}  // namespace suite::studies

@@ -1,0 +1,109 @@
+// A study end to end on the in-process breach model: the table, the ledger, a study killed
+// midway and resumed (same table as an uninterrupted run), failed evaluations recorded and
+// skipped, the same table at any concurrency.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/config/config.hpp"
+#include "core/log/logger.hpp"
+#include "core/mpi/comm.hpp"
+#include "studies/ledger/ledger.hpp"
+#include "studies/run/study.hpp"
+#include "tests/support/test_dirs.hpp"
+
+namespace {
+
+using namespace suite::studies;
+namespace fs = std::filesystem;
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// 3 x 3 over the default breach scene's kd (cm^3/(N s)) and s_u (kPa); kd's lower bound may be
+// set negative to provoke failed evaluations.
+std::string spec(double kd_lower = 10.0, int concurrency = 2) {
+  return "variables:\n"
+         "  - {name: kd, lower: " +
+         std::to_string(kd_lower) +
+         ", upper: 50}\n"
+         "  - {name: su, lower: 5, upper: 30}\n"
+         "method: {type: multidim, partitions: 2}\n"
+         "model:\n"
+         "  type: breach\n"
+         "  scene: " SUITE_BREACH_DEFAULT_SCENE
+         "\n"
+         "  set: {soil.erodibility: \"{kd} cm^3/(N s)\", soil.undrained_shear_strength: \"{su} kPa\"}\n"
+         "  responses: [peak_outflow, breach_initiation_time]\n"
+         "execution: {concurrency: " +
+         std::to_string(concurrency) + "}\n";
+}
+
+StudyCounts run(const fs::path& dir, const std::string& text, bool resume = false, bool retry = false) {
+  const suite::mpi::Comm self(MPI_COMM_SELF);
+  suite::Logger log(self, "study", {suite::LogLevel::warn, false, nullptr});
+  auto cfg = resume ? suite::config::Config::from_file(dir / "study.yaml")
+                    : suite::config::Config::from_string(text, "study.yaml");
+  return run_study(cfg, {dir, resume, retry}, log);
+}
+
+TEST(StudyRun, TableAndLedger) {
+  const auto dir = suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF));
+  const auto c = run(dir / "a", spec());
+  EXPECT_EQ(c.points, 9u);
+  EXPECT_EQ(c.run, 9u);
+  EXPECT_EQ(c.failed, 0u);
+  EXPECT_EQ(Ledger::read(dir / "a" / "ledger.jsonl").size(), 9u);
+  const std::string csv = read(dir / "a" / "tabular.csv");
+  EXPECT_EQ(csv.rfind("eval_id,status,kd,su,peak_outflow,breach_initiation_time,reason\n", 0), 0u) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 10);
+  EXPECT_NE(read(dir / "a" / "tabular.dat").find("peak_outflow"), std::string::npos);
+  // A second `run` into the same folder is refused; the ledger says what to do.
+  EXPECT_NE(suite::testing::input_error_of([&] { run(dir / "a", spec()); }).find("study resume"), std::string::npos);
+}
+
+TEST(StudyRun, SameTableAtAnyConcurrency) {
+  const auto dir = suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF));
+  run(dir / "one", spec(10.0, 1));
+  run(dir / "two", spec(10.0, 2));
+  EXPECT_EQ(read(dir / "one" / "tabular.dat"), read(dir / "two" / "tabular.dat"));
+}
+
+TEST(StudyRun, KilledAndResumedGivesTheSameTable) {
+  const auto dir = suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF));
+  run(dir / "whole", spec());
+  // The kill: the ledger keeps its first 4 lines and half of the 5th; the tables are gone.
+  run(dir / "killed", spec());
+  const std::string ledger = read(dir / "killed" / "ledger.jsonl");
+  std::size_t cut = 0;
+  for (int i = 0; i < 4; ++i) cut = ledger.find('\n', cut) + 1;
+  std::ofstream(dir / "killed" / "ledger.jsonl", std::ios::trunc) << ledger.substr(0, cut + 20);
+  fs::remove(dir / "killed" / "tabular.dat");
+  const auto c = run(dir / "killed", "", true);
+  EXPECT_EQ(c.reused, 4u);
+  EXPECT_EQ(c.run, 5u);
+  EXPECT_EQ(read(dir / "killed" / "tabular.dat"), read(dir / "whole" / "tabular.dat"));
+}
+
+TEST(StudyRun, FailedEvaluationsAreRecordedAndRetried) {
+  const auto dir = suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF));
+  // kd from -30: the first column of the grid (kd = -30) is rejected by the breach scene.
+  const auto c = run(dir / "f", spec(-30.0));
+  EXPECT_EQ(c.failed, 3u);
+  const std::string csv = read(dir / "f" / "tabular.csv");
+  EXPECT_NE(csv.find("failed"), std::string::npos);
+  EXPECT_NE(csv.find("soil.erodibility"), std::string::npos) << "the reason names the key";
+  const std::string dat = read(dir / "f" / "tabular.dat");
+  EXPECT_EQ(std::count(dat.begin(), dat.end(), '\n'), 1 + 6) << "failed evaluations stay out of the table";
+  // Resuming reruns nothing; --retry-failed reruns exactly the failed three (which fail again).
+  EXPECT_EQ(run(dir / "f", "", true).run, 0u);
+  EXPECT_EQ(run(dir / "f", "", true, true).run, 3u);
+}
+
+}  // namespace
