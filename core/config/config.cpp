@@ -481,6 +481,23 @@ std::filesystem::path Section::file(const std::string& key) const {
   return p;
 }
 
+std::vector<std::filesystem::path> Section::files(const std::string& key) const {
+  std::vector<std::filesystem::path> out;
+  for (const auto& name : get<std::vector<std::string>>(key)) {
+    std::filesystem::path p(name);
+    if (p.is_relative()) p = state_->base_dir / p;
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec))
+      reject(key, fmt::format("no such file '{}' (a relative path is read from the scene file's folder)", p.string()));
+    out.push_back(p);
+  }
+  return out;
+}
+
+const std::filesystem::path& Section::base_dir() const {
+  return state_->base_dir;
+}
+
 YAML::Node Section::raw(const std::string& key) const {
   state_->free_form.insert(child_path(key));
   return child(key);

@@ -81,6 +81,10 @@ class Section {
   // A file named by `key`: a relative path is taken from the folder of the scene file (from the
   // working directory for a scene given as a string). InputError if it is not a readable file.
   std::filesystem::path file(const std::string& key) const;
+  // The same for a list of files.
+  std::vector<std::filesystem::path> files(const std::string& key) const;
+  // The folder relative paths are read from (the scene file's; empty: the working directory).
+  const std::filesystem::path& base_dir() const;
 
   // A subtree passed on without checking (e.g. PETSc options); all its keys count as known.
   YAML::Node raw(const std::string& key) const;

@@ -1,6 +1,7 @@
 // study: parameter studies over the suite's models (spec/studies.md, issue 6).
 //   study run SPEC.yaml [key.path=value ...] [--out DIR] [--log-level LEVEL]
 //   study resume DIR [--retry-failed] [--log-level LEVEL]
+//   study analyze DIR
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -22,7 +23,9 @@ constexpr const char* kUsage =
     "      (DIR defaults to study-<SPEC name>)\n"
     "  study resume DIR [--retry-failed] [--log-level LEVEL]\n"
     "      continue a killed study: runs only what its ledger does not hold (and, with --retry-failed,\n"
-    "      what failed)\n";
+    "      what failed)\n"
+    "  study analyze DIR\n"
+    "      rewrite DIR's tables and analysis.json from its ledger, running nothing\n";
 
 struct Arguments {
   std::string command, target, out, log_level = "info";
@@ -81,15 +84,16 @@ int main(int argc, char** argv) {
       suite::studies::run_study(spec, {out, false, a.retry_failed}, log);
       return 0;
     }
-    if (a.command == "resume") {
+    if (a.command == "resume" || a.command == "analyze") {
       if (a.target.empty()) throw suite::InputError(std::string("study resume needs the study folder\n") + kUsage);
       if (!a.overrides.empty() || !a.out.empty())
-        throw suite::InputError("study resume takes the study folder only: the specification is its study.yaml");
+        throw suite::InputError("study " + a.command +
+                                " takes the study folder only: the specification is its study.yaml");
       const std::filesystem::path dir = a.target;
       if (!std::filesystem::exists(dir / "study.yaml"))
         throw suite::InputError(fmt::format("'{}' is not a study folder (no study.yaml)", dir.string()));
       const auto spec = suite::config::Config::from_file(dir / "study.yaml");
-      suite::studies::run_study(spec, {dir, true, a.retry_failed}, log);
+      suite::studies::run_study(spec, {dir, true, a.retry_failed, a.command == "analyze"}, log);
       return 0;
     }
     throw suite::InputError(fmt::format("unknown command '{}'\n{}", a.command, kUsage));

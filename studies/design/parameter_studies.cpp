@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <random>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -108,7 +109,32 @@ std::vector<Point> read_list(const config::Section& s, std::size_t n) {
 Design read_design(const config::Section& s, const std::vector<Variable>& vars) {
   const std::size_t n = vars.size();
   Design d;
-  d.method = s.choice("type", {"multidim", "vector", "centered", "list"});
+  d.method = s.choice("type", {"multidim", "vector", "centered", "list", "sampling", "sobol_indices", "morris"});
+  for (const auto& v : vars) d.lower.push_back(v.lower), d.upper.push_back(v.upper);
+  if (d.method == "sampling" || d.method == "sobol_indices" || d.method == "morris") {
+    std::random_device entropy;
+    d.seed = static_cast<std::uint64_t>(s.integer("seed", entropy() % 2147483647u, 1, 2147483647));
+    std::vector<Distribution> marginals;
+    for (const auto& v : vars) marginals.push_back(v.distribution);
+    if (d.method == "sampling") {
+      const std::string kind = s.choice("sample_type", {"lhs", "random", "sobol_sequence"}, "lhs");
+      const auto n = static_cast<std::size_t>(s.integer("samples", 100, 1, 100000000));
+      d.points = sample(marginals,
+                        kind == "lhs"      ? SamplingKind::lhs
+                        : kind == "random" ? SamplingKind::random
+                                           : SamplingKind::sobol_sequence,
+                        n, d.seed);
+    } else if (d.method == "sobol_indices") {
+      d.saltelli =
+          saltelli_design(marginals, static_cast<std::size_t>(s.integer("samples", 1000, 2, 10000000)), d.seed);
+      d.points = d.saltelli->points;
+    } else {
+      d.morris = morris_design(d.lower, d.upper, static_cast<std::size_t>(s.integer("trajectories", 10, 1, 100000)),
+                               static_cast<std::size_t>(s.integer("levels", 4, 2, 1000)), d.seed);
+      d.points = d.morris->points;
+    }
+    return d;
+  }
   Point initial;
   for (const auto& v : vars) initial.push_back(v.initial);
   if (d.method == "multidim") {

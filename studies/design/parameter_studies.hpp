@@ -11,15 +11,24 @@
 //             variable in turn initial + k s_i e_i for k = -d_i..d_i, k != 0 (1 + 2 sum d_i points).
 //   list      (points: [[...], ...] or file: a CSV/whitespace table with one column per variable,
 //             in the variables' order, an optional header line).
+// and the sampling designs (sampling.hpp, morris.hpp), drawn from the variables' distributions:
+//   sampling       (sample_type: lhs | random | sobol_sequence, samples, seed)
+//   sobol_indices  (samples N, seed): Saltelli's pick-freeze design, N (M + 2) points
+//   morris         (trajectories r, levels p (even), seed): r (M + 1) points on a p-level grid
+//                  over the bounds
+// A seed that is not given is drawn once and written into study.yaml, so every study can be
+// repeated exactly.
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/config/config.hpp"
+#include "studies/analysis/morris.hpp"
+#include "studies/design/sampling.hpp"
 #include "studies/design/variables.hpp"
 
 namespace suite::studies {
-
-using Point = std::vector<double>;
 
 std::vector<Point> multidim_points(const std::vector<Variable>& variables, const std::vector<long long>& partitions);
 std::vector<Point> vector_points(const Point& initial, const Point& step, long long num_steps);
@@ -28,6 +37,10 @@ std::vector<Point> centered_points(const Point& initial, const Point& step, cons
 struct Design {
   std::string method;
   std::vector<Point> points;
+  std::uint64_t seed = 0;
+  std::optional<SaltelliDesign> saltelli;  // sobol_indices: for the estimator
+  std::optional<MorrisDesign> morris;      // morris: for the elementary effects
+  std::vector<double> lower, upper;        // the variables' bounds
 };
 
 // Reads the `method` section for the designs above; InputError names the key.

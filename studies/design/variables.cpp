@@ -20,8 +20,15 @@ std::vector<Variable> read_variables(const config::Section& root) {
         s.reject("name",
                  "must be an identifier (letters, digits, _; not starting with a digit) so templates can use it");
     if (!seen.insert(v.name).second) s.reject("name", "is used by another variable");
-    v.lower = s.number("lower", config::Range::any());
-    v.upper = s.number("upper", config::Range::any());
+    if (auto d = s.optional_section("distribution")) {
+      v.distribution = read_distribution(*d);
+      v.lower = s.number("lower", quantile(v.distribution, 1e-6), config::Range::any());
+      v.upper = s.number("upper", quantile(v.distribution, 1.0 - 1e-6), config::Range::any());
+    } else {
+      v.lower = s.number("lower", config::Range::any());
+      v.upper = s.number("upper", config::Range::any());
+      v.distribution = {"uniform", {{"lower", v.lower}, {"upper", v.upper}}};
+    }
     if (v.upper < v.lower) s.reject("upper", fmt::format("is below lower ({})", v.lower));
     v.initial = s.number("initial", 0.5 * (v.lower + v.upper), config::Range::between(v.lower, v.upper));
     out.push_back(v);

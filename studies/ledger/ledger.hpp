@@ -3,11 +3,14 @@
 // object per line in <study>/ledger.jsonl, written and flushed to disk as each evaluation ends,
 // so a killed study loses at most the evaluations that were running.
 //
+// (fsynced at most once a second and on close, so a node failure loses at most the last second).
+//
 //   {"eval_id": 17, "inputs": [..], "hash": "9f2c...", "status": "ok" | "failed",
 //    "reason": "", "responses": [..], "wall_s": 0.0008, "host": "node12"}
 //
 // A resumed study reads it back and runs only what has no "ok" line (and, with --retry-failed,
 // what failed). The hash of the inputs guards against resuming with a changed design.
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -36,7 +39,7 @@ class Ledger {
   Ledger(const Ledger&) = delete;
   Ledger& operator=(const Ledger&) = delete;
 
-  void append(const LedgerEntry& e);  // one line, flushed and fsynced
+  void append(const LedgerEntry& e);  // one line, flushed
   // Every entry of an existing ledger, in file order; a torn last line (a kill mid-write) is
   // ignored, any other bad line is an InputError naming the line.
   static std::vector<LedgerEntry> read(const std::filesystem::path& path);
@@ -44,6 +47,7 @@ class Ledger {
  private:
   std::filesystem::path path_;
   std::FILE* file_ = nullptr;
+  std::chrono::steady_clock::time_point last_sync_{};
 };
 
 }  // namespace suite::studies

@@ -46,7 +46,7 @@ std::unique_ptr<Model> BreachModel::read(const config::Section& s, const std::ve
   return std::make_unique<BreachModel>(scene, std::move(set), std::move(responses));
 }
 
-Outcome BreachModel::evaluate(const std::map<std::string, double>& values) const {
+Outcome BreachModel::evaluate(long, const std::map<std::string, double>& values) const {
   Outcome out;
   try {
     std::vector<std::string> overrides;

@@ -28,7 +28,7 @@ class BreachModel : public Model {
               std::vector<std::string> responses);
   static std::unique_ptr<Model> read(const config::Section& model, const std::vector<std::string>& variables);
 
-  Outcome evaluate(const std::map<std::string, double>& values) const override;
+  Outcome evaluate(long eval_id, const std::map<std::string, double>& values) const override;
   const std::vector<std::string>& responses() const override { return responses_; }
 
  private:

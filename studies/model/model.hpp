@@ -2,6 +2,7 @@
 // What a study evaluates: a model takes one point (the variables' values by name) and returns
 // its responses, or says why it failed. Thread-safe: a study calls evaluate() from several
 // threads at once.
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -20,11 +21,14 @@ struct Outcome {
 class Model {
  public:
   virtual ~Model() = default;
-  virtual Outcome evaluate(const std::map<std::string, double>& values) const = 0;
+  // eval_id: the evaluation's number in the study (work directories and Dakota files carry it).
+  virtual Outcome evaluate(long eval_id, const std::map<std::string, double>& values) const = 0;
   virtual const std::vector<std::string>& responses() const = 0;
 };
 
-// Reads the `model` section (type: breach, ...); InputError names the key.
-std::unique_ptr<Model> read_model(const config::Section& model, const std::vector<std::string>& variables);
+// Reads the `model` section (type: breach | command); InputError names the key. Work
+// directories of command models go under `work_root` (the study's output folder).
+std::unique_ptr<Model> read_model(const config::Section& model, const std::vector<std::string>& variables,
+                                  const std::filesystem::path& work_root);
 
 }  // namespace suite::studies

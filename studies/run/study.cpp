@@ -17,6 +17,8 @@
 
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/run/run_record.hpp"
+#include "studies/analysis/report.hpp"
 #include "studies/dakota/tabular_file.hpp"
 #include "studies/design/parameter_studies.hpp"
 #include "studies/ledger/ledger.hpp"
@@ -77,7 +79,7 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
   const auto variables = read_variables(root);
   const auto var_names = names(variables);
   const Design design = read_design(root.section("method"), variables);
-  const auto model = read_model(root.section("model"), var_names);
+  const auto model = read_model(root.section("model"), var_names, options.out);
   const auto execution = root.section_or_empty("execution");
   const int cores = available_cores();
   const int concurrency = static_cast<int>(execution.integer("concurrency", cores, 1, 4096));
@@ -113,6 +115,7 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
     }
     pending.push_back(id);
   }
+  if (options.analyze_only) pending.clear();
   const int threads = std::max(1, std::min<int>(concurrency, static_cast<int>(pending.size())));
   log.info("{} study: {} points, {} to run ({} from the ledger), {} at a time{}", design.method, counts.points,
            pending.size(), counts.reused, threads, concurrency > cores ? " (more than the cores available)" : "");
@@ -131,7 +134,7 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
         std::map<std::string, double> values;
         for (std::size_t i = 0; i < x.size(); ++i) values[var_names[i]] = x[i];
         const auto t0 = std::chrono::steady_clock::now();
-        const Outcome o = model->evaluate(values);
+        const Outcome o = model->evaluate(id, values);
         LedgerEntry e{id,
                       x,
                       input_hash(var_names, x),
@@ -164,6 +167,7 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
 
   const auto all = latest(ledger_path);
   write_tables(out, var_names, model->responses(), all);
+  write_json_atomic(out / "analysis.json", analyze(design, var_names, model->responses(), all));
   counts.run = finished;
   for (const auto& [id, e] : all)
     if (!e.ok) ++counts.failed;

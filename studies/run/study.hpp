@@ -12,6 +12,8 @@
 //   ledger.jsonl        every evaluation as it ends (ledger/ledger.hpp)
 //   tabular.dat         Dakota's annotated tabular format, successful evaluations in id order
 //   tabular.csv         every evaluation: eval_id, status, variables, responses, reason
+//   analysis.json       statistics, correlations, regression, Sobol indices, Morris effects
+//                       (analysis/report.hpp)
 // A failed evaluation is recorded with its reason and never stops the others. A resumed study
 // reruns nothing that finished (and, with retry_failed, reruns what failed).
 #include <filesystem>
@@ -27,6 +29,7 @@ struct StudyOptions {
   std::filesystem::path out;
   bool resume = false;
   bool retry_failed = false;
+  bool analyze_only = false;  // `study analyze`: rebuild the tables and analysis.json, run nothing
 };
 
 struct StudyCounts {

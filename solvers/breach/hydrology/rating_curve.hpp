@@ -17,6 +17,7 @@ class RatingCurve {
 
   double operator()(double level) const;  // m^3/s
   bool empty() const { return levels_.empty(); }
+  double crest() const { return levels_.front(); }  // the level where the outflow starts
 
  private:
   std::vector<double> levels_, discharges_;

@@ -134,7 +134,21 @@ BreachState::Event BreachState::stage_end(Stage stage) const {
   return {end, kInvert, scene_.dam.foundation};
 }
 
-double BreachState::distance(const Event& e, double t, const StateVector& y) const {
+std::array<double, BreachState::kSwitches> BreachState::switches(double t, const StateVector& y, Stage stage) const {
+  const Scene& sc = scene_;
+  const Flows f = flows(t, y, stage);
+  const double opening = stage == Stage::internal_erosion ? y[kInvert] + 0.5 * y[kBottomWidth] : invert(y, stage);
+  const double spill = sc.reservoir.spillway.empty() ? -1e300 : sc.reservoir.spillway.crest();
+  return {f.level - sc.dam.crest(), f.level - opening, sc.reservoir.spillway.empty() ? 1.0 : f.level - spill,
+          stage == Stage::headcut_advance ? 1.0 : stress(f, y, stage) - sc.soil.tau_c};
+}
+
+double BreachState::switch_tolerance(int index) const {
+  return index < 3 ? 1e-10 * scene_.dam.height : 1e-10 * std::max(scene_.soil.tau_c, 1.0);
+}
+
+double BreachState::distance(const Event& e, double t, const StateVector& y, Stage stage) const {
+  if (e.kind == Event::Kind::switch_point) return e.at * switches(t, y, stage)[static_cast<std::size_t>(e.index)];
   // Face erosion, headcut position and width grow towards the event; the invert and the
   // storage fall to it.
   if (e.component == kStorageLessInflow) return storage(t, y);

@@ -71,16 +71,28 @@ class BreachState {
   // empty. distance() is positive before it and zero at it; the integrator then sets `component`
   // to `at` exactly (except for the empty reservoir, where nothing is set: the storage is left at
   // the located value, within round-off of zero, so the mass balance stays exact).
+  //
+  // A switch is a point where the right-hand side has a kink without any state changing: the
+  // level crossing the crest, the breach invert or the spillway crest (an outflow starts or
+  // stops), the active erosion stress crossing tau_c (erosion starts or stops). The error
+  // estimate of a step across a kink is unreliable, so steps end on switches too. For a switch,
+  // `at` is the sign the switch function had at the start of the step and `index` says which.
   struct Event {
-    enum class Kind { stage_end, width_cap, empty_reservoir } kind;
+    enum class Kind { stage_end, width_cap, empty_reservoir, switch_point } kind;
     Component component;
     double at;
+    int index = 0;
   };
   Event stage_end(Stage stage) const;
   Event width_cap() const { return {Event::Kind::width_cap, kBottomWidth, scene_.dam.crest_length}; }
   Event empty_reservoir() const { return {Event::Kind::empty_reservoir, kStorageLessInflow, 0.0}; }
+  // The switch functions (their zeros are the switches), each scaled to a length or a stress.
+  static constexpr int kSwitches = 4;
+  std::array<double, kSwitches> switches(double t, const StateVector& y, Stage stage) const;
+  // How close to zero a switch function counts as on the switch.
+  double switch_tolerance(int index) const;
   Stage first_stage() const;
-  double distance(const Event& e, double t, const StateVector& y) const;
+  double distance(const Event& e, double t, const StateVector& y, Stage stage) const;
   double storage(double t, const StateVector& y) const {
     return y[kStorageLessInflow] + (scene_.inflow.cumulative(t) - inflow_at_start_);
   }

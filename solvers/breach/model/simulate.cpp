@@ -69,6 +69,12 @@ class Run {
     // A reservoir drained to the foundation empties in finite time (Q ~ V^0.75 for a power-law
     // basin): the step must end there, not carry the storage below zero.
     if (model_.storage(t_, y_) > 0.0) e.push_back(model_.empty_reservoir());
+    // Switches, signed so that they are positive now; one we sit on is left for this step.
+    const auto g = model_.switches(t_, y_, stage_);
+    for (int k = 0; k < BreachState::kSwitches; ++k)
+      if (std::abs(g[static_cast<std::size_t>(k)]) > model_.switch_tolerance(k))
+        e.push_back({BreachState::Event::Kind::switch_point, kStorageLessInflow,
+                     g[static_cast<std::size_t>(k)] > 0 ? 1.0 : -1.0, k});
     return e;
   }
   // Shortens `s` (a trial step of size h) to end on the first event it crosses; returns the
@@ -104,12 +110,15 @@ class Run {
 double Run::locate(Step& s, double h, std::optional<BreachState::Event>& hit) {
   hit.reset();
   const auto ev = events();
+  const auto switches_at_end = model_.switches(t_ + h, s.y, stage_);  // once for all switches
   double first = h;
   for (std::size_t i = 0; i < ev.size(); ++i) {
-    auto distance = [&](double dt, const StateVector& y) { return model_.distance(ev[i], t_ + dt, y); };
-    if (distance(h, s.y) > 0.0) continue;
+    auto distance = [&](double dt, const StateVector& y) { return model_.distance(ev[i], t_ + dt, y, stage_); };
+    const bool is_switch = ev[i].kind == BreachState::Event::Kind::switch_point;
+    if ((is_switch ? ev[i].at * switches_at_end[static_cast<std::size_t>(ev[i].index)] : distance(h, s.y)) > 0.0)
+      continue;
     // Illinois regula falsi on theta in (0, h]: g(0) > 0 >= g(h).
-    const double tol = 1e-12 * scale_[ev[i].component];
+    const double tol = is_switch ? model_.switch_tolerance(ev[i].index) : 1e-12 * scale_[ev[i].component];
     // ga, gb are the (Illinois-halved) end values that set the secant; fb is g(b) itself.
     double a = 0.0, ga = distance(0.0, y_), b = h, gb = distance(h, s.y), fb = gb;
     int side = 0;
@@ -135,7 +144,7 @@ double Run::locate(Step& s, double h, std::optional<BreachState::Event>& hit) {
 void Run::apply_event(const BreachState::Event& e) {
   using Kind = BreachState::Event::Kind;
   span_.valid = false;  // a kink: no peak search across it
-  if (e.kind == Kind::empty_reservoir) return;
+  if (e.kind == Kind::empty_reservoir || e.kind == Kind::switch_point) return;
   y_[e.component] = e.at;
   if (e.kind == Kind::width_cap) {
     capped_ = true;
