@@ -478,6 +478,9 @@ std::filesystem::path Section::file(const std::string& key) const {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(p, ec))
     reject(key, fmt::format("no such file ('{}'; a relative path is read from the scene file's folder)", p.string()));
+  // The effective configuration names the file absolutely, so it can be rerun from anywhere.
+  p = std::filesystem::absolute(p).lexically_normal();
+  store_default(key, YAML::Node(p.string()));
   return p;
 }
 
@@ -489,9 +492,18 @@ std::vector<std::filesystem::path> Section::files(const std::string& key) const 
     std::error_code ec;
     if (!std::filesystem::exists(p, ec))
       reject(key, fmt::format("no such file '{}' (a relative path is read from the scene file's folder)", p.string()));
-    out.push_back(p);
+    out.push_back(std::filesystem::absolute(p).lexically_normal());
   }
+  YAML::Node list(YAML::NodeType::Sequence);
+  for (const auto& p : out) list.push_back(p.string());
+  store_default(key, list);
   return out;
+}
+
+void Section::record(const std::string& key, const std::vector<std::string>& values) const {
+  YAML::Node list(YAML::NodeType::Sequence);
+  for (const auto& v : values) list.push_back(v);
+  store_default(key, list);
 }
 
 const std::filesystem::path& Section::base_dir() const {

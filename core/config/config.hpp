@@ -80,11 +80,15 @@ class Section {
 
   // A file named by `key`: a relative path is taken from the folder of the scene file (from the
   // working directory for a scene given as a string). InputError if it is not a readable file.
+  // The effective configuration then holds the absolute path.
   std::filesystem::path file(const std::string& key) const;
   // The same for a list of files.
   std::vector<std::filesystem::path> files(const std::string& key) const;
   // The folder relative paths are read from (the scene file's; empty: the working directory).
   const std::filesystem::path& base_dir() const;
+  // Replaces a value in the effective configuration by the one the program resolved it to
+  // (e.g. a command's relative program path made absolute), so a rerun from elsewhere works.
+  void record(const std::string& key, const std::vector<std::string>& values) const;
 
   // A subtree passed on without checking (e.g. PETSc options); all its keys count as known.
   YAML::Node raw(const std::string& key) const;

@@ -51,7 +51,7 @@ nlohmann::json analyze(const Design& design, const std::vector<std::string>& var
   }
   out["evaluations"] = evaluations.size();
   out["failed"] = failed;
-  out["missing"] = design.points.size() - evaluations.size();
+  out["missing"] = design.points.size() > evaluations.size() ? design.points.size() - evaluations.size() : 0;
 
   auto& stats = out["statistics"];
   for (std::size_t r = 0; r < responses.size(); ++r) {
@@ -63,7 +63,11 @@ nlohmann::json analyze(const Design& design, const std::vector<std::string>& var
                            {"quantiles", q}};
   }
 
-  if (x.size() >= variables.size() + 3) {
+  if (design.method == "vector" || design.method == "centered") {
+    // One-at-a-time designs move the inputs together or one by one: correlations and
+    // regression over them mean nothing (Dakota computes them for multidim and sampling only).
+    out["correlations"] = {{"skipped", "not computed for " + design.method + " designs"}};
+  } else if (x.size() >= variables.size() + 3) {
     const auto c = correlations(variables, x, responses, y);
     out["correlations"] = {{"names", c.names},
                            {"pearson", matrix(c.pearson)},

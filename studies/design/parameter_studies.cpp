@@ -118,12 +118,12 @@ Design read_design(const config::Section& s, const std::vector<Variable>& vars) 
     for (const auto& v : vars) marginals.push_back(v.distribution);
     if (d.method == "sampling") {
       const std::string kind = s.choice("sample_type", {"lhs", "random", "sobol_sequence"}, "lhs");
-      const auto n = static_cast<std::size_t>(s.integer("samples", 100, 1, 100000000));
+      const auto samples = static_cast<std::size_t>(s.integer("samples", 100, 1, 100000000));
       d.points = sample(marginals,
                         kind == "lhs"      ? SamplingKind::lhs
                         : kind == "random" ? SamplingKind::random
                                            : SamplingKind::sobol_sequence,
-                        n, d.seed);
+                        samples, d.seed);
     } else if (d.method == "sobol_indices") {
       d.saltelli =
           saltelli_design(marginals, static_cast<std::size_t>(s.integer("samples", 1000, 2, 10000000)), d.seed);

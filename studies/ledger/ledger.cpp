@@ -52,9 +52,18 @@ Ledger::Ledger(std::filesystem::path path) : path_(std::move(path)) {
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const auto end = text.rfind('\n');
     const std::size_t keep = end == std::string::npos ? 0 : end + 1;
-    if (keep != text.size()) std::filesystem::resize_file(path_, keep);
+    bool complete = false;  // a whole entry whose newline was lost is kept, and ended
+    if (keep != text.size()) {
+      try {
+        complete = nlohmann::json::parse(text.substr(keep)).contains("eval_id");
+      } catch (const nlohmann::json::exception&) {
+      }
+      if (!complete) std::filesystem::resize_file(path_, keep);
+    }
+    file_ = std::fopen(path_.c_str(), "ae");
+    if (file_ && complete) std::fputc('\n', file_);
   }
-  file_ = std::fopen(path_.c_str(), "a");
+  if (!file_) file_ = std::fopen(path_.c_str(), "ae");
   if (!file_)
     throw InputError(
         fmt::format("cannot open the study ledger '{}' for appending: {}", path_.string(), std::strerror(errno)));

@@ -38,7 +38,7 @@ std::unique_ptr<Model> BreachModel::read(const config::Section& s, const std::ve
   // The summary's keys, from a run of the scene as it is: a misspelt response fails here, once.
   const auto probe = breach::make_summary(breach::Result{}).json();
   for (const auto& r : responses)
-    if (!probe.contains(r) || r == "units")
+    if (!probe.contains(r) || r == "units" || probe.at(r).is_string())
       s.reject("responses", fmt::format("'{}' is not in the breach summary; valid: peak_outflow, time_to_peak, "
                                         "peak_breach_outflow, breach_initiation_time, final_bottom_width, "
                                         "final_depth, eroded_volume, ... (docs/breach.md)",

@@ -47,12 +47,14 @@ std::unique_ptr<Model> CommandModel::read(const config::Section& s, const std::v
   st.variables = variables;
   st.work_root = work_root;
   st.command = s.get<std::vector<std::string>>("command");
+  std::vector<std::string> given = st.command;
   if (st.command.empty())
     s.reject("command", "name the program and its arguments, e.g. [./driver.sh, params.in, results.out]");
   for (auto& a : st.command) a = replace_all(a, "{bindir}", bindir());
   // A program named by a relative path is the study folder's, not the work directory's.
   if (st.command[0].find('/') != std::string::npos && std::filesystem::path(st.command[0]).is_relative())
-    st.command[0] = std::filesystem::absolute(s.base_dir() / st.command[0]).string();
+    given[0] = st.command[0] = std::filesystem::absolute(s.base_dir() / st.command[0]).lexically_normal().string();
+  s.record("command", given);  // study.yaml names the program absolutely; {bindir} stays a tag
   for (const auto& t : s.has("templates") ? s.sections("templates") : std::vector<config::Section>{}) {
     const auto file = t.file("file");
     const std::string to = t.get<std::string>("to", file.filename().string());
@@ -100,7 +102,7 @@ Outcome CommandModel::attempt(const std::filesystem::path& dir, long eval_id,
     io::write_file_atomic(dir / s_.parameters_file, dakota::write_parameters(p, s_.parameters_format));
   }
   const ProcessResult pr = run_process(s_.command, dir, s_.time_limit_s);
-  if (!pr.started || pr.exit_status != 0) {
+  if (!pr.started || pr.timed_out || pr.exit_status != 0) {
     out.reason = pr.reason;
     return out;
   }

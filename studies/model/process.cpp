@@ -22,7 +22,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::files
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
-  const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
+  const std::string err = (dir / "stderr.txt").string();
   int report[2];  // the child writes errno here if exec fails; closed on a successful exec
   if (::pipe2(report, O_CLOEXEC) != 0) {
     r.reason = fmt::format("cannot create a pipe: {}", std::strerror(errno));
@@ -39,8 +39,8 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::files
     ::setpgid(0, 0);
     int fail = 0;
     if (::chdir(dir.c_str()) != 0) fail = errno;
-    const int fo = fail ? -1 : ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int fe = fail ? -1 : ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int fo = fail ? -1 : ::open("stdout.txt", O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    const int fe = fail ? -1 : ::open("stderr.txt", O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (!fail && (fo < 0 || fe < 0)) fail = errno;
     if (!fail) ::dup2(fo, 1), ::dup2(fe, 2), ::execvp(args[0], args.data()), fail = errno;
     [[maybe_unused]] const auto n = ::write(report[1], &fail, sizeof fail);
@@ -55,6 +55,10 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::files
   for (;;) {
     const pid_t w = ::waitpid(pid, &status, WNOHANG);
     if (w == pid) break;
+    if (w < 0 && errno != EINTR) {  // not our child any more: nothing to wait for
+      r.reason = fmt::format("lost track of '{}': {}", argv[0], std::strerror(errno));
+      return r;
+    }
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (time_limit_s > 0 && elapsed > time_limit_s && !r.timed_out) {
       r.timed_out = true;

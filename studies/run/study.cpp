@@ -12,6 +12,7 @@
 #include <iterator>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -82,10 +83,12 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
   const auto model = read_model(root.section("model"), var_names, options.out);
   const auto execution = root.section_or_empty("execution");
   const int cores = available_cores();
-  const int concurrency = static_cast<int>(execution.integer("concurrency", cores, 1, 4096));
+  // Not written into study.yaml when absent: a resume on another allocation uses its own cores.
+  const int concurrency =
+      execution.has("concurrency") ? static_cast<int>(execution.integer("concurrency", cores, 1, 4096)) : cores;
   spec.finish();
 
-  const auto& out = options.out;
+  const auto out = std::filesystem::absolute(options.out);  // work directories are entered by programs
   std::filesystem::create_directories(out);
   const auto ledger_path = out / "ledger.jsonl";
   if (!options.resume && std::filesystem::exists(ledger_path))
@@ -95,9 +98,24 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
                     out.string(), out.string()));
   if (!options.resume) spec.write_effective(out / "study.yaml");
 
+  // Opening the ledger for appending repairs a line torn by a kill; `analyze` only reads it.
+  std::optional<Ledger> ledger;
+  if (!options.analyze_only) ledger.emplace(ledger_path);
   StudyCounts counts;
   counts.points = design.points.size();
   auto done = latest(ledger_path);
+  for (const auto& [id, e] : done) {
+    if (id < 1 || static_cast<std::size_t>(id) > design.points.size())
+      throw InputError(
+          fmt::format("{}: evaluation {} is not a point of the study's design ({} points); the design "
+                      "changed since the ledger was written (start a new study folder)",
+                      ledger_path.string(), id, design.points.size()));
+    if (e.responses.size() != model->responses().size())
+      throw InputError(
+          fmt::format("{}: evaluation {} has {} responses, the study now asks for {}; the responses "
+                      "changed since the ledger was written (start a new study folder)",
+                      ledger_path.string(), id, e.responses.size(), model->responses().size()));
+  }
   std::vector<long> pending;
   for (std::size_t i = 0; i < design.points.size(); ++i) {
     const long id = static_cast<long>(i) + 1;
@@ -120,7 +138,6 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
   log.info("{} study: {} points, {} to run ({} from the ledger), {} at a time{}", design.method, counts.points,
            pending.size(), counts.reused, threads, concurrency > cores ? " (more than the cores available)" : "");
 
-  Ledger ledger(ledger_path);
   std::mutex mutex;
   std::atomic<std::size_t> next{0};
   std::size_t finished = 0, failed = 0;
@@ -144,7 +161,7 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
                       host};
         const std::lock_guard lock(mutex);
-        ledger.append(e);
+        ledger->append(e);
         ++finished;
         if (!o.ok) {
           ++failed;

@@ -37,8 +37,8 @@ TEST(BreachExamples, EveryExampleRuns) {
 }
 
 TEST(BreachExamples, ScaleFamilyPeaksRiseWithScale) {
-  // Both breach modes; by overtopping every member breaches, while the two smallest clay dams
-  // resist internal erosion (their pipe's wall stress stays below the clay's tau_c of 9.6 Pa).
+  // Both breach modes; every member breaches (the clay's undrained strength, 0.3 psf as
+  // published, is so low that its pipes collapse at once, even in the smallest dams).
   for (const char* family : {"scale_family", "scale_family_internal_erosion"}) {
     for (const char* material : {"silty_sand_SM", "clay_CL"}) {
       double last = 0.0;
@@ -46,8 +46,7 @@ TEST(BreachExamples, ScaleFamilyPeaksRiseWithScale) {
         const auto file = kExamples / family / (std::string(material) + "_scale" + std::to_string(s) + ".yaml");
         const Result r = run_file(file);
         EXPECT_GT(r.peak_outflow, last) << file;
-        const bool resists = std::string(family) != "scale_family" && std::string(material) == "clay_CL" && s < 2;
-        EXPECT_EQ(r.failed(), !resists) << file;
+        EXPECT_TRUE(r.failed()) << file;
         last = r.peak_outflow;
       }
     }

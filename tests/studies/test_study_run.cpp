@@ -106,4 +106,28 @@ TEST(StudyRun, FailedEvaluationsAreRecordedAndRetried) {
   EXPECT_EQ(run(dir / "f", "", true, true).run, 3u);
 }
 
+TEST(StudyRun, RelativePathsSurviveAResumeFromElsewhere) {
+  // A spec naming its scene relative to itself, run with a relative output folder, resumed from
+  // another working directory: study.yaml holds absolute paths, work folders are absolute.
+  const auto dir = suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF));
+  fs::create_directories(dir / "spec");
+  fs::copy_file(SUITE_BREACH_DEFAULT_SCENE, dir / "spec" / "dam.yaml");
+  std::string text = spec();
+  text.replace(text.find(SUITE_BREACH_DEFAULT_SCENE), std::string(SUITE_BREACH_DEFAULT_SCENE).size(), "dam.yaml");
+  std::ofstream(dir / "spec" / "study.yaml") << text;
+  const auto cwd = fs::current_path();
+  fs::current_path(dir);
+  {
+    const suite::mpi::Comm self(MPI_COMM_SELF);
+    suite::Logger log(self, "study", {suite::LogLevel::warn, false, nullptr});
+    run_study(suite::config::Config::from_file("spec/study.yaml"), {"rel", false, false}, log);
+  }
+  fs::current_path(cwd);
+  EXPECT_TRUE(fs::exists(dir / "rel" / "tabular.dat"));
+  fs::remove(dir / "rel" / "tabular.dat");
+  const auto c = run(dir / "rel", "", true);  // from the test's own working directory
+  EXPECT_EQ(c.reused, 9u);
+  EXPECT_TRUE(fs::exists(dir / "rel" / "tabular.dat"));
+}
+
 }  // namespace

@@ -122,7 +122,9 @@ BreachState::Event BreachState::stage_end(Stage stage) const {
   constexpr auto end = Event::Kind::stage_end;
   switch (stage) {
     case Stage::internal_erosion:
-      return {end, kBottomWidth, scene_.internal_erosion.collapse_diameter(scene_.dam.crest())};
+      return {end, kBottomWidth,
+              std::min(scene_.internal_erosion.geometric_collapse_diameter(scene_.dam.crest()),
+                       scene_.breach.headcut.critical_height_factor * scene_.soil.s_u / scene_.soil.gamma_t)};
     case Stage::surface_erosion:
       return {end, kFaceErosion, scene_.breach.formation_depth};
     case Stage::headcut_advance:

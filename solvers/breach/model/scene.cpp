@@ -51,10 +51,10 @@ InternalErosion read_internal_erosion(const config::Section& s, const Embankment
   ie.initial_diameter = s.quantity("initial_diameter", "m", ie.initial_diameter, Range::positive());
   ie.entrance_loss = s.number("entrance_loss", ie.entrance_loss, Range::at_least(0));
   ie.collapse_fraction = s.number("collapse_fraction", ie.collapse_fraction, Range::between(0.05, 1.0));
-  if (ie.initial_diameter >= ie.collapse_diameter(dam.crest()))
+  if (ie.initial_diameter >= ie.geometric_collapse_diameter(dam.crest()))
     s.reject("initial_diameter", fmt::format("is already at the collapse diameter ({:.4g} m = collapse_fraction x "
                                              "height of the crest above the pipe)",
-                                             ie.collapse_diameter(dam.crest())));
+                                             ie.geometric_collapse_diameter(dam.crest())));
   return ie;
 }
 

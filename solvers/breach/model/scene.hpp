@@ -58,10 +58,13 @@ struct InternalErosion {
   double initial_diameter = 0.1;  // m; not published: an input (default an assumption)
   double entrance_loss = 0.5;     // K_e of a square-edged entrance (Henderson 1966)
   // The roof collapses when the pipe's diameter reaches this fraction of the embankment height
-  // above its invert (0.5: the roof is then as thick as the pipe is wide). An assumption: the
-  // criterion WinDAM C uses is not in the sources at hand.
+  // above its invert (0.5: the roof is then as thick as the pipe is wide), or earlier, when the
+  // pipe's unsupported wall, d high, passes the critical height of a vertical cut in the soil,
+  // N s_u / gamma_t (the headcut's stability number, headcut.hpp; Taylor 1948). Both are
+  // assumptions: the criterion WinDAM C uses is not in the sources at hand. A pipe that starts
+  // at or above the strength limit collapses at once.
   double collapse_fraction = 0.5;
-  double collapse_diameter(double crest) const { return collapse_fraction * (crest - elevation); }
+  double geometric_collapse_diameter(double crest) const { return collapse_fraction * (crest - elevation); }
 };
 
 struct TimeSettings {

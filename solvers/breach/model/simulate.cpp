@@ -226,6 +226,9 @@ Result Run::run() {
   y_ = model_.initial();
   stage_ = model_.first_stage();
   const double storage0 = y_[kStorageLessInflow];
+  // A stage that is over before it starts (a pipe already past its collapse size) ends at once.
+  if (stage_ != Stage::breach_widening && model_.distance(model_.stage_end(stage_), t_, y_, stage_) <= 0.0)
+    apply_event(model_.stage_end(stage_));
   refresh();
   {
     const Flows f = model_.flows(t_, y_, stage_);
