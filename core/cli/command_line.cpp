@@ -24,6 +24,12 @@ Parsed parse(const Spec& spec, int argc, const char* const* argv) {
       ->check(CLI::IsMember({"debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
   app.add_flag("--log-all-ranks", cl.log_all_ranks, "print info messages from every rank, not only rank 0");
+  std::vector<std::string> dakota;
+  if (spec.dakota_driver)
+    app.add_option("--dakota", dakota,
+                   "run as a Dakota analysis driver: read the parameters file PARAMS (variables named by scene "
+                   "keys), write the results file RESULTS (responses named by summary keys)")
+        ->expected(2);
   app.footer(
       "Overrides set any key of the scene, e.g. soil.cohesion=5kPa output.every=20.\n"
       "PETSc options: the scene's petsc: section or the PETSC_OPTIONS environment variable.");
@@ -59,6 +65,8 @@ Parsed parse(const Spec& spec, int argc, const char* const* argv) {
     return result;
   }
   if (!restart.empty()) cl.restart = restart;
+  if (dakota.size() == 2)
+    cl.dakota = std::make_pair(std::filesystem::path(dakota[0]), std::filesystem::path(dakota[1]));
   cl.argv.assign(argv, argv + argc);
   result.command_line = std::move(cl);
   return result;

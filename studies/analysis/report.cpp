@@ -32,6 +32,8 @@ nlohmann::json analyze(const Design& design, const std::vector<std::string>& var
                        const std::vector<std::string>& responses, const std::map<long, LedgerEntry>& evaluations) {
   nlohmann::json out;
   out["method"] = design.method;
+  out["variables"] = variables;
+  out["responses"] = responses;
   out["points"] = design.points.size();
   if (design.seed) out["seed"] = design.seed;
   std::size_t failed = 0;

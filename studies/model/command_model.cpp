@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/dakota/results_file.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
-#include "studies/dakota/results_file.hpp"
 #include "studies/model/process.hpp"
 
 namespace suite::studies {

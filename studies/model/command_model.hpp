@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "studies/dakota/parameters_file.hpp"
+#include "core/dakota/parameters_file.hpp"
 #include "studies/model/model.hpp"
 #include "studies/template/template.hpp"
 

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -16,14 +17,15 @@
 #include <sstream>
 #include <thread>
 
+#include "core/dakota/tabular_file.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/run/run_record.hpp"
 #include "studies/analysis/report.hpp"
-#include "studies/dakota/tabular_file.hpp"
 #include "studies/design/parameter_studies.hpp"
 #include "studies/ledger/ledger.hpp"
 #include "studies/model/model.hpp"
+#include "studies/plot/plot_command.hpp"
 #include "studies/template/expression.hpp"
 
 namespace suite::studies {
@@ -82,6 +84,7 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
   const Design design = read_design(root.section("method"), variables);
   const auto model = read_model(root.section("model"), var_names, options.out);
   const auto execution = root.section_or_empty("execution");
+  const bool plot = root.section_or_empty("output").get<bool>("plot", true);
   const int cores = available_cores();
   // Not written into study.yaml when absent: a resume on another allocation uses its own cores.
   const int concurrency =
@@ -185,6 +188,10 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
   const auto all = latest(ledger_path);
   write_tables(out, var_names, model->responses(), all);
   write_json_atomic(out / "analysis.json", analyze(design, var_names, model->responses(), all));
+  if (plot) {
+    const std::string cmd = plot_command(out);
+    if (std::system(cmd.c_str()) != 0) log.warn("the charts failed (command: {}); the tables are complete", cmd);
+  }
   counts.run = finished;
   for (const auto& [id, e] : all)
     if (!e.ok) ++counts.failed;

@@ -1,7 +1,6 @@
 // Inflow hydrographs and stage-storage relations: values, exact volumes, inverses, and the
 // messages for bad input.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <cmath>
@@ -94,8 +93,9 @@ TEST(Hydrograph, TableFromAFileBesideTheScene) {
   EXPECT_NEAR(q.volume(0.0, 6 * 3600.0), 0.5 * 6 * 3600.0 * 1200 * kCfs, 1e-9);
   std::ofstream(dir / "bad.csv") << "0,0\n2,1200\n3;lots\n";
   auto bad = Config::from_file(dir / "dam.yaml", {"inflow.file=bad.csv"});
-  EXPECT_NE(input_error_of([&] { Hydrograph::read(bad.root().section("inflow")); })
-                .find("bad.csv:3: expected two numbers (time in h, discharge in cfs), got '3 lots'"),
+  EXPECT_NE(input_error_of([&] {
+              Hydrograph::read(bad.root().section("inflow"));
+            }).find("bad.csv:3: expected two numbers (time in h, discharge in cfs), got '3 lots'"),
             std::string::npos);
   auto missing = Config::from_file(dir / "dam.yaml", {"inflow.file=nothere.csv"});
   EXPECT_NE(input_error_of([&] { Hydrograph::read(missing.root().section("inflow")); }).find("no such file"),

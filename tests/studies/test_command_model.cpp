@@ -34,7 +34,7 @@ std::string read(const fs::path& p) {
 StudyCounts run_file(const fs::path& spec, const fs::path& out) {
   const suite::mpi::Comm self(MPI_COMM_SELF);
   suite::Logger log(self, "study", {suite::LogLevel::error, false, nullptr});
-  auto cfg = suite::config::Config::from_file(spec);
+  auto cfg = suite::config::Config::from_file(spec, {"output.plot=false"});
   return run_study(cfg, {out, false, false}, log);
 }
 

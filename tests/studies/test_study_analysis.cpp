@@ -24,7 +24,7 @@ nlohmann::json run(const fs::path& dir, const std::string& spec, bool analyze_on
   const suite::mpi::Comm self(MPI_COMM_SELF);
   suite::Logger log(self, "study", {suite::LogLevel::error, false, nullptr});
   auto cfg = analyze_only ? suite::config::Config::from_file(dir / "study.yaml")
-                          : suite::config::Config::from_string(spec, "study.yaml");
+                          : suite::config::Config::from_string(spec + "output: {plot: false}\n", "study.yaml");
   run_study(cfg, {dir, analyze_only, false, analyze_only}, log);
   std::ifstream in(dir / "analysis.json");
   return nlohmann::json::parse(in);

@@ -42,7 +42,7 @@ std::string spec(double kd_lower = 10.0, int concurrency = 2) {
          "  set: {soil.erodibility: \"{kd} cm^3/(N s)\", soil.undrained_shear_strength: \"{su} kPa\"}\n"
          "  responses: [peak_outflow, breach_initiation_time]\n"
          "execution: {concurrency: " +
-         std::to_string(concurrency) + "}\n";
+         std::to_string(concurrency) + "}\noutput: {plot: false}\n";
 }
 
 StudyCounts run(const fs::path& dir, const std::string& text, bool resume = false, bool retry = false) {

@@ -1,4 +1,4 @@
-#include "studies/dakota/results_file.hpp"
+#include "core/dakota/results_file.hpp"
 
 #include <fmt/format.h>
 
@@ -13,7 +13,7 @@
 
 #include "core/errors.hpp"
 
-namespace suite::studies::dakota {
+namespace suite::dakota {
 namespace {
 
 bool is_space(char c) {
@@ -122,4 +122,4 @@ std::string write_failure() {
   return "FAIL\n";
 }
 
-}  // namespace suite::studies::dakota
+}  // namespace suite::dakota

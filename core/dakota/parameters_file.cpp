@@ -1,4 +1,4 @@
-#include "studies/dakota/parameters_file.hpp"
+#include "core/dakota/parameters_file.hpp"
 
 #include <fmt/format.h>
 
@@ -14,7 +14,7 @@
 
 #include "core/errors.hpp"
 
-namespace suite::studies::dakota {
+namespace suite::dakota {
 namespace {
 
 // Field widths of Dakota's writers (write_precision 15, w = write_precision + 7).
@@ -418,4 +418,4 @@ Parameters read_parameters(const std::string& text, const std::string& source_na
   return p;
 }
 
-}  // namespace suite::studies::dakota
+}  // namespace suite::dakota

@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-namespace suite::studies::dakota {
+namespace suite::dakota {
 
 struct Results {
   bool failed = false;
@@ -39,4 +39,4 @@ std::string write_results(const std::vector<std::pair<std::string, double>>& lab
 // "FAIL\n", the failure marker dakota.interfacing writes.
 std::string write_failure();
 
-}  // namespace suite::studies::dakota
+}  // namespace suite::dakota

@@ -44,7 +44,7 @@
 #include <utility>
 #include <vector>
 
-namespace suite::studies::dakota {
+namespace suite::dakota {
 
 struct Parameters {
   std::vector<std::pair<std::string, double>> variables;  // name, value; in Dakota's order
@@ -74,4 +74,4 @@ Parameters read_parameters(const std::string& text, const std::string& source_na
 // The layout of `text` as read_parameters sees it.
 ParametersFormat detect_parameters_format(const std::string& text);
 
-}  // namespace suite::studies::dakota
+}  // namespace suite::dakota

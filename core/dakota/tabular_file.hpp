@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-namespace suite::studies::dakota {
+namespace suite::dakota {
 
 struct Row {
   long eval_id = 0;
@@ -63,4 +63,4 @@ class TabularWriter {
 std::vector<Row> read_tabular(const std::string& text, const std::string& source_name, std::size_t num_variables,
                               bool with_interface = true);
 
-}  // namespace suite::studies::dakota
+}  // namespace suite::dakota

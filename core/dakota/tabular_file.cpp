@@ -1,4 +1,4 @@
-#include "studies/dakota/tabular_file.hpp"
+#include "core/dakota/tabular_file.hpp"
 
 #include <fmt/format.h>
 
@@ -14,7 +14,7 @@
 
 #include "core/errors.hpp"
 
-namespace suite::studies::dakota {
+namespace suite::dakota {
 namespace {
 
 constexpr int kLabelWidth = 14;          // setw(14) for every variable and response label
@@ -165,4 +165,4 @@ std::vector<Row> read_tabular(const std::string& text, const std::string& source
   return rows;
 }
 
-}  // namespace suite::studies::dakota
+}  // namespace suite::dakota

@@ -7,6 +7,7 @@
 // - tabular files: snl-dakota/dakota-examples
 //   official/drivers/black-box_simulation_windows/dakota_tabular.dat (current Dakota,
 //   left-aligned) and official/surrogates/imported/training_data.dat (older, right-aligned).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,14 +15,14 @@
 #include <random>
 #include <sstream>
 
+#include "core/dakota/parameters_file.hpp"
+#include "core/dakota/results_file.hpp"
+#include "core/dakota/tabular_file.hpp"
 #include "core/errors.hpp"
-#include "studies/dakota/parameters_file.hpp"
-#include "studies/dakota/results_file.hpp"
-#include "studies/dakota/tabular_file.hpp"
 
 namespace {
 
-using namespace suite::studies::dakota;
+using namespace suite::dakota;
 
 // The InputError message of `f`, or "" if it did not throw one.
 template <class F>
@@ -193,7 +194,7 @@ TEST(DakotaParameters, RoundTripsTo15SignificantDigits) {
   for (auto format : {ParametersFormat::standard, ParametersFormat::aprepro}) {
     Parameters p;
     for (int i = 0; i < 200; ++i)
-      p.variables.emplace_back("v" + std::to_string(i), mantissa(rng) * std::pow(10.0, exponent(rng)));
+      p.variables.emplace_back(fmt::format("v{}", i), mantissa(rng) * std::pow(10.0, exponent(rng)));
     p.variables.emplace_back("zero", 0.0);
     p.variables.emplace_back("tiny", 4.9e-324);
     p.variables.emplace_back("huge", -1.797693134862315e308);
