@@ -19,21 +19,13 @@
 #include "core/dakota/results_file.hpp"
 #include "core/dakota/tabular_file.hpp"
 #include "core/errors.hpp"
+#include "tests/support/test_dirs.hpp"
 
 namespace {
 
 using namespace suite::dakota;
 
-// The InputError message of `f`, or "" if it did not throw one.
-template <class F>
-std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const suite::InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using suite::testing::input_error_of;
 
 bool contains(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;

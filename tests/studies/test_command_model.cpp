@@ -24,12 +24,7 @@ namespace {
 using namespace suite::studies;
 namespace fs = std::filesystem;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using suite::testing::read_file;
 
 StudyCounts run_file(const fs::path& spec, const fs::path& out) {
   const suite::mpi::Comm self(MPI_COMM_SELF);
@@ -89,7 +84,7 @@ execution: {concurrency: 2}
   EXPECT_NE(byid[8].reason.find("reports a failed evaluation"), std::string::npos) << byid[8].reason;
   EXPECT_NE(byid[9].reason.find("wrote no"), std::string::npos) << byid[9].reason;
   // The parameters file in each work directory is Dakota's.
-  const std::string params = read(dir / "out" / "workdir.2" / "params.in");
+  const std::string params = read_file(dir / "out" / "workdir.2" / "params.in");
   // 21 spaces, then the count right-aligned in a field of 22 (Dakota's layout).
   EXPECT_EQ(params.rfind(std::string(42, ' ') + "2 variables\n", 0), 0u) << params;
   EXPECT_NE(params.find(" eval_id\n"), std::string::npos);
@@ -126,7 +121,7 @@ output:
   plot: false
 )X";
   // The in-process model's scene: the template with a value where the tag is (`set` replaces it).
-  std::string scene = read(dir / "dam.tmpl");
+  std::string scene = read_file(dir / "dam.tmpl");
   scene.replace(scene.find("{kd}"), 4, "10");
   std::ofstream(dir / "dam.yaml") << scene;
   const std::string common = R"X(variables:
@@ -146,7 +141,7 @@ method: {type: multidim, partitions: 2}
   set: {soil.erodibility: "{kd} cm^3/(N s)"}
   responses: [peak_outflow, breach_initiation_time]
 )X";
-  ASSERT_EQ(run_file(dir / "external.yaml", dir / "ext").failed, 0u) << read(dir / "ext" / "tabular.csv");
+  ASSERT_EQ(run_file(dir / "external.yaml", dir / "ext").failed, 0u) << read_file(dir / "ext" / "tabular.csv");
   ASSERT_EQ(run_file(dir / "inprocess.yaml", dir / "inp").failed, 0u);
   // The executable steps onto its output rows and the library call does not, so the two agree to
   // the integrator's stated step independence (1e-4, docs/breach.md), not bit for bit.

@@ -16,6 +16,7 @@
 #include "core/errors.hpp"
 #include "studies/design/distributions.hpp"
 #include "studies/design/sampling.hpp"
+#include "tests/support/test_dirs.hpp"
 
 namespace {
 
@@ -34,15 +35,7 @@ Distribution parse(const std::string& yaml) {
   return d;
 }
 
-template <class F>
-std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const suite::InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using suite::testing::input_error_of;
 
 std::vector<double> column(const std::vector<Point>& points, std::size_t j) {
   std::vector<double> c;

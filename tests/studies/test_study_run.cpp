@@ -19,12 +19,7 @@ namespace {
 using namespace suite::studies;
 namespace fs = std::filesystem;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using suite::testing::read_file;
 
 // 3 x 3 over the default breach scene's kd (cm^3/(N s)) and s_u (kPa); kd's lower bound may be
 // set negative to provoke failed evaluations.
@@ -60,10 +55,10 @@ TEST(StudyRun, TableAndLedger) {
   EXPECT_EQ(c.run, 9u);
   EXPECT_EQ(c.failed, 0u);
   EXPECT_EQ(Ledger::read(dir / "a" / "ledger.jsonl").size(), 9u);
-  const std::string csv = read(dir / "a" / "tabular.csv");
+  const std::string csv = read_file(dir / "a" / "tabular.csv");
   EXPECT_EQ(csv.rfind("eval_id,status,kd,su,peak_outflow,breach_initiation_time,reason\n", 0), 0u) << csv;
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 10);
-  EXPECT_NE(read(dir / "a" / "tabular.dat").find("peak_outflow"), std::string::npos);
+  EXPECT_NE(read_file(dir / "a" / "tabular.dat").find("peak_outflow"), std::string::npos);
   // A second `run` into the same folder is refused; the ledger says what to do.
   EXPECT_NE(suite::testing::input_error_of([&] { run(dir / "a", spec()); }).find("study resume"), std::string::npos);
 }
@@ -72,7 +67,7 @@ TEST(StudyRun, SameTableAtAnyConcurrency) {
   const auto dir = suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF));
   run(dir / "one", spec(10.0, 1));
   run(dir / "two", spec(10.0, 2));
-  EXPECT_EQ(read(dir / "one" / "tabular.dat"), read(dir / "two" / "tabular.dat"));
+  EXPECT_EQ(read_file(dir / "one" / "tabular.dat"), read_file(dir / "two" / "tabular.dat"));
 }
 
 TEST(StudyRun, KilledAndResumedGivesTheSameTable) {
@@ -80,7 +75,7 @@ TEST(StudyRun, KilledAndResumedGivesTheSameTable) {
   run(dir / "whole", spec());
   // The kill: the ledger keeps its first 4 lines and half of the 5th; the tables are gone.
   run(dir / "killed", spec());
-  const std::string ledger = read(dir / "killed" / "ledger.jsonl");
+  const std::string ledger = read_file(dir / "killed" / "ledger.jsonl");
   std::size_t cut = 0;
   for (int i = 0; i < 4; ++i) cut = ledger.find('\n', cut) + 1;
   std::ofstream(dir / "killed" / "ledger.jsonl", std::ios::trunc) << ledger.substr(0, cut + 20);
@@ -88,7 +83,7 @@ TEST(StudyRun, KilledAndResumedGivesTheSameTable) {
   const auto c = run(dir / "killed", "", true);
   EXPECT_EQ(c.reused, 4u);
   EXPECT_EQ(c.run, 5u);
-  EXPECT_EQ(read(dir / "killed" / "tabular.dat"), read(dir / "whole" / "tabular.dat"));
+  EXPECT_EQ(read_file(dir / "killed" / "tabular.dat"), read_file(dir / "whole" / "tabular.dat"));
 }
 
 TEST(StudyRun, FailedEvaluationsAreRecordedAndRetried) {
@@ -96,10 +91,10 @@ TEST(StudyRun, FailedEvaluationsAreRecordedAndRetried) {
   // kd from -30: the first column of the grid (kd = -30) is rejected by the breach scene.
   const auto c = run(dir / "f", spec(-30.0));
   EXPECT_EQ(c.failed, 3u);
-  const std::string csv = read(dir / "f" / "tabular.csv");
+  const std::string csv = read_file(dir / "f" / "tabular.csv");
   EXPECT_NE(csv.find("failed"), std::string::npos);
   EXPECT_NE(csv.find("soil.erodibility"), std::string::npos) << "the reason names the key";
-  const std::string dat = read(dir / "f" / "tabular.dat");
+  const std::string dat = read_file(dir / "f" / "tabular.dat");
   EXPECT_EQ(std::count(dat.begin(), dat.end(), '\n'), 1 + 6) << "failed evaluations stay out of the table";
   // Resuming reruns nothing; --retry-failed reruns exactly the failed three (which fail again).
   EXPECT_EQ(run(dir / "f", "", true).run, 0u);

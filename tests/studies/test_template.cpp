@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "studies/template/expression.hpp"
 #include "studies/template/template.hpp"
+#include "tests/support/test_dirs.hpp"
 
 namespace {
 
@@ -21,16 +22,7 @@ using suite::studies::Expression;
 using suite::studies::format_number;
 using suite::studies::Template;
 
-// The InputError message of `f`, or "" if it did not throw one.
-template <class F>
-std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const suite::InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using suite::testing::input_error_of;
 
 #define EXPECT_CONTAINS(text, part) EXPECT_NE((text).find(part), std::string::npos) << (text)
 

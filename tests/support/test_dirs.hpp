@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "core/errors.hpp"
@@ -25,6 +27,14 @@ inline std::filesystem::path scratch_dir(const mpi::Comm& comm) {
   }
   comm.barrier();
   return dir;
+}
+
+// The whole text of a file ("" if it cannot be read).
+inline std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 // The InputError message of `f`, or "" if it did not throw one.

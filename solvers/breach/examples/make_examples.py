@@ -31,6 +31,16 @@ def read_table(path):
     return list(csv.DictReader(lines))
 
 
+def soil_yaml(m):
+    """The soil section of a Table 2.1 material, in its published US units."""
+    return f"""soil:
+  erodibility: {m['erodibility_kd']} (ft/h)/psf
+  critical_shear_stress: {m['critical_shear_stress']} psf
+  undrained_shear_strength: {m['undrained_shear_strength']} psf
+  unit_weight: {m['total_unit_weight']} lbf/ft^3
+"""
+
+
 def scale_family(materials, out, piping):
     out.mkdir(parents=True, exist_ok=True)
     for m in materials:
@@ -51,12 +61,7 @@ def scale_family(materials, out, piping):
   crest_length: {10 * h_ft} ft
   upstream_slope: 3
   downstream_slope: 3
-soil:
-  erodibility: {m['erodibility_kd']} (ft/h)/psf
-  critical_shear_stress: {m['critical_shear_stress']} psf
-  undrained_shear_strength: {m['undrained_shear_strength']} psf
-  unit_weight: {m['total_unit_weight']} lbf/ft^3
-reservoir:
+{soil_yaml(m)}reservoir:
   storage: {{type: power_law, alpha: {1000 * h:.8g}, exponent: 2, bottom: 0 m}}   # 1000 h^3 m^3 at the crest
   initial_level: {0.95 * h:.8g} m
 inflow:
@@ -90,12 +95,7 @@ dam:
   crest_length: 1 m
   upstream_slope: {1 / float(sc['upstream_slope_VH']):.6g}     # {sc['upstream_slope_VH']} V:H
   downstream_slope: {1 / float(sc['downstream_slope_VH']):.6g}   # {sc['downstream_slope_VH']} V:H
-soil:
-  erodibility: {sand['erodibility_kd']} (ft/h)/psf
-  critical_shear_stress: {sand['critical_shear_stress']} psf
-  undrained_shear_strength: {sand['undrained_shear_strength']} psf
-  unit_weight: {sand['total_unit_weight']} lbf/ft^3
-breach:
+{soil_yaml(sand)}breach:
   initial_width: 1 m       # the whole (unit) crest: a 2D breach
   side_slope: 0            # 2D: no side walls
 reservoir:
