@@ -13,6 +13,7 @@
 #include <openturns/LogUniform.hxx>
 #include <openturns/Normal.hxx>
 #include <openturns/Triangular.hxx>
+#include <openturns/TruncatedDistribution.hxx>
 #include <openturns/Uniform.hxx>
 #include <openturns/WeibullMin.hxx>
 #include <optional>
@@ -143,8 +144,22 @@ void validate(const Distribution& d) {
                                    d.parameters.at(bad->key), bad->text));
 }
 
+namespace {
+OT::Distribution untruncated(const Distribution& d);
+}  // namespace
+
 OT::Distribution to_openturns(const Distribution& d) {
   validate(d);
+  const OT::Distribution base = untruncated(d);
+  if (!d.truncation) return base;
+  const auto [lo, hi] = *d.truncation;
+  if (!(lo < hi) || base.computeCDF(hi) - base.computeCDF(lo) <= 0.0)
+    throw InputError(fmt::format("{}: the bounds [{}, {}] leave no probability to truncate to", describe(d), lo, hi));
+  return OT::TruncatedDistribution(base, lo, hi);
+}
+
+namespace {
+OT::Distribution untruncated(const Distribution& d) {
   const auto& p = d.parameters;
   const std::string& t = d.type;
   if (t == "uniform") return OT::Uniform(p.at("lower"), p.at("upper"));
@@ -159,6 +174,8 @@ OT::Distribution to_openturns(const Distribution& d) {
   if (t == "weibull") return OT::WeibullMin(p.at("scale"), p.at("shape"), p.at("location"));
   throw InputError(fmt::format("distribution type '{}' has no OpenTURNS counterpart", t));  // unreachable
 }
+
+}  // namespace
 
 double cdf(const Distribution& d, double x) {
   return to_openturns(d).computeCDF(x);

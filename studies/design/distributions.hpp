@@ -30,6 +30,7 @@
 // OpenTURNS stays out of this header (its headers are slow to compile); the conversion
 // to_openturns() lives in studies/design/openturns_bridge.hpp.
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ namespace suite::studies {
 struct Distribution {
   std::string type;                          // one of distribution_types()
   std::map<std::string, double> parameters;  // keys as above; optional keys hold their defaults
+  // Truncation to [lower, upper] (a variable with a distribution and explicit bounds, as Dakota
+  // truncates bounded uncertain variables); OpenTURNS' TruncatedDistribution.
+  std::optional<std::pair<double, double>> truncation;
 };
 
 // The accepted values of `type`, in the order above.

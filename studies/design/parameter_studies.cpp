@@ -119,11 +119,21 @@ Design read_design(const config::Section& s, const std::vector<Variable>& vars) 
     if (d.method == "sampling") {
       const std::string kind = s.choice("sample_type", {"lhs", "random", "sobol_sequence"}, "lhs");
       const auto samples = static_cast<std::size_t>(s.integer("samples", 100, 1, 100000000));
-      d.points = sample(marginals,
-                        kind == "lhs"      ? SamplingKind::lhs
-                        : kind == "random" ? SamplingKind::random
-                                           : SamplingKind::sobol_sequence,
-                        samples, d.seed);
+      std::vector<std::vector<double>> rank_correlation;
+      if (s.has("rank_correlation")) {  // the Spearman matrix, one row per variable
+        rank_correlation = s.table("rank_correlation", std::vector<std::string>(n, "1"));
+        if (rank_correlation.size() != n)
+          s.reject("rank_correlation", fmt::format("give {} rows, one per variable", n));
+      }
+      try {
+        d.points = sample(marginals,
+                          kind == "lhs"      ? SamplingKind::lhs
+                          : kind == "random" ? SamplingKind::random
+                                             : SamplingKind::sobol_sequence,
+                          samples, d.seed, rank_correlation);
+      } catch (const InputError& e) {
+        s.reject(s.has("rank_correlation") ? "rank_correlation" : "sample_type", e.what());
+      }
     } else if (d.method == "sobol_indices") {
       d.saltelli =
           saltelli_design(marginals, static_cast<std::size_t>(s.integer("samples", 1000, 2, 10000000)), d.seed);
@@ -159,6 +169,12 @@ Design read_design(const config::Section& s, const std::vector<Variable>& vars) 
                                per_variable<long long>(s, "steps_per_variable", n));
   } else {
     d.points = read_list(s, n);
+    for (std::size_t k = 0; k < d.points.size(); ++k)
+      for (std::size_t i = 0; i < n; ++i)
+        if (d.points[k][i] < vars[i].lower || d.points[k][i] > vars[i].upper)
+          s.reject(s.has("file") ? "file" : "points",
+                   fmt::format("point {} has {} = {}, outside its bounds [{}, {}]", k + 1, vars[i].name, d.points[k][i],
+                               vars[i].lower, vars[i].upper));
   }
   return d;
 }

@@ -12,7 +12,8 @@
 //   list      (points: [[...], ...] or file: a CSV/whitespace table with one column per variable,
 //             in the variables' order, an optional header line).
 // and the sampling designs (sampling.hpp, morris.hpp), drawn from the variables' distributions:
-//   sampling       (sample_type: lhs | random | sobol_sequence, samples, seed)
+//   sampling       (sample_type: lhs | random | sobol_sequence, samples, seed, and optionally
+//                  rank_correlation: the Spearman matrix [[1, 0.5], [0.5, 1]], Iman-Conover)
 //   sobol_indices  (samples N, seed): Saltelli's pick-freeze design, N (M + 2) points
 //   morris         (trajectories r, levels p (even), seed): r (M + 1) points on a p-level grid
 //                  over the bounds

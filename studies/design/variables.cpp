@@ -5,6 +5,8 @@
 #include <cctype>
 #include <set>
 
+#include "core/errors.hpp"
+
 namespace suite::studies {
 
 std::vector<Variable> read_variables(const config::Section& root) {
@@ -22,12 +24,21 @@ std::vector<Variable> read_variables(const config::Section& root) {
     if (!seen.insert(v.name).second) s.reject("name", "is used by another variable");
     if (auto d = s.optional_section("distribution")) {
       v.distribution = read_distribution(*d);
+      const bool bounded = s.has("lower") || s.has("upper");
       v.lower = s.number("lower", quantile(v.distribution, 1e-6), config::Range::any());
       v.upper = s.number("upper", quantile(v.distribution, 1.0 - 1e-6), config::Range::any());
+      if (bounded) {  // explicit bounds truncate the distribution (as Dakota does)
+        v.distribution.truncation = std::make_pair(v.lower, v.upper);
+        try {
+          validate(v.distribution), quantile(v.distribution, 0.5);
+        } catch (const InputError& e) {
+          s.reject("lower", e.what());
+        }
+      }
     } else {
       v.lower = s.number("lower", config::Range::any());
       v.upper = s.number("upper", config::Range::any());
-      v.distribution = {"uniform", {{"lower", v.lower}, {"upper", v.upper}}};
+      v.distribution = {"uniform", {{"lower", v.lower}, {"upper", v.upper}}, std::nullopt};
     }
     if (v.upper < v.lower) s.reject("upper", fmt::format("is below lower ({})", v.lower));
     v.initial = s.number("initial", 0.5 * (v.lower + v.upper), config::Range::between(v.lower, v.upper));

@@ -2,6 +2,10 @@
 // arithmetic) and the variables' validation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
 #include "core/config/config.hpp"
 #include "studies/design/parameter_studies.hpp"
 #include "tests/support/test_dirs.hpp"
@@ -70,6 +74,42 @@ TEST(Designs, ListInline) {
   EXPECT_EQ(d.points[2], (Point{0.5, -1}));
 }
 
+// Spearman correlation of two columns (no ties: continuous samples).
+double spearman(const std::vector<Point>& pts, std::size_t a, std::size_t b) {
+  auto ranks = [&](std::size_t c) {
+    std::vector<std::size_t> idx(pts.size());
+    std::iota(idx.begin(), idx.end(), 0);
+    std::sort(idx.begin(), idx.end(), [&](auto i, auto j) { return pts[i][c] < pts[j][c]; });
+    std::vector<double> r(pts.size());
+    for (std::size_t k = 0; k < idx.size(); ++k) r[idx[k]] = static_cast<double>(k);
+    return r;
+  };
+  const auto ra = ranks(a), rb = ranks(b);
+  const double n = static_cast<double>(pts.size()), mean = (n - 1) / 2;
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t k = 0; k < pts.size(); ++k)
+    sab += (ra[k] - mean) * (rb[k] - mean), saa += (ra[k] - mean) * (ra[k] - mean),
+        sbb += (rb[k] - mean) * (rb[k] - mean);
+  return sab / std::sqrt(saa * sbb);
+}
+
+TEST(Designs, SamplingWithRankCorrelationAndTruncation) {
+  // LHS of 4000 points with Spearman 0.7 requested: within 0.05 (sampling error ~1/sqrt(n));
+  // a normal truncated by explicit bounds never leaves them; the same seed, the same points.
+  const std::string spec =
+      "variables:\n  - {name: a, lower: 0, upper: 1}\n"
+      "  - {name: b, lower: -1, upper: 2, distribution: {type: normal, mean: 0, std: 3}}\n"
+      "method: {type: sampling, samples: 4000, seed: 9, rank_correlation: [[1, 0.7], [0.7, 1]]}\n";
+  const auto d = design(spec);
+  ASSERT_EQ(d.points.size(), 4000u);
+  EXPECT_NEAR(spearman(d.points, 0, 1), 0.7, 0.05);
+  for (const auto& p : d.points) {
+    EXPECT_GE(p[1], -1.0);
+    EXPECT_LE(p[1], 2.0);
+  }
+  EXPECT_EQ(design(spec).points, d.points);
+}
+
 TEST(Designs, BadSpecificationsNameTheKey) {
   auto has = [](const std::string& msg, const std::string& part) {
     EXPECT_NE(msg.find(part), std::string::npos) << "'" << part << "' not in: " << msg;
@@ -77,6 +117,12 @@ TEST(Designs, BadSpecificationsNameTheKey) {
   has(input_error_of([&] { design(kTwo + "method: {type: multidim, partitions: [2, 3, 4]}\n"); }),
       "one per variable (2), not 3");
   has(input_error_of([&] { design(kTwo + "method: {type: list, points: [0, 0, 1]}\n"); }), "points of 2 values");
+  has(input_error_of([&] { design(kTwo + "method: {type: list, points: [0, 0, 1.5, 0]}\n"); }),
+      "point 2 has x = 1.5, outside its bounds [0, 1]");
+  has(input_error_of([&] {
+        design(kTwo + "method: {type: sampling, samples: 10, seed: 1, rank_correlation: [[1, 2], [2, 1]]}\n");
+      }),
+      "key 'method.rank_correlation'");
   has(input_error_of([&] { design(kTwo + "method: {type: multidm}\n"); }), "did you mean 'multidim'");
   has(input_error_of(
           [&] { design("variables:\n  - {name: x, lower: 1, upper: 0}\nmethod: {type: multidim, partitions: 1}\n"); }),

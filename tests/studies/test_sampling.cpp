@@ -25,7 +25,7 @@ using suite::config::Config;
 constexpr double kPi = std::numbers::pi;
 
 Distribution dist(const std::string& type, std::map<std::string, double> parameters) {
-  return {type, std::move(parameters)};
+  return {type, std::move(parameters), std::nullopt};
 }
 
 Distribution parse(const std::string& yaml) {
