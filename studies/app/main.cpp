@@ -2,17 +2,23 @@
 //   study run SPEC.yaml [key.path=value ...] [--out DIR] [--log-level LEVEL]
 //   study resume DIR [--retry-failed] [--log-level LEVEL]
 //   study analyze DIR
+//   study templatize FILE --var NAME=LOCATION ... [--out TEMPLATE]
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/config/config.hpp"
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 #include "core/log/logger.hpp"
 #include "core/mpi/comm.hpp"
 #include "core/mpi/environment.hpp"
 #include "core/run/guarded_main.hpp"
 #include "studies/run/study.hpp"
+#include "studies/template/expression.hpp"
+#include "studies/template/templatize.hpp"
 
 namespace {
 
@@ -25,11 +31,15 @@ constexpr const char* kUsage =
     "      continue a killed study: runs only what its ledger does not hold (and, with --retry-failed,\n"
     "      what failed)\n"
     "  study analyze DIR\n"
-    "      rewrite DIR's tables and analysis.json from its ledger, running nothing\n";
+    "      rewrite DIR's tables and analysis.json from its ledger, running nothing\n"
+    "  study templatize FILE --var NAME=LOCATION ... [--out TEMPLATE]\n"
+    "      write a template of FILE (standard output by default): LOCATION is LINE:FIELD for\n"
+    "      fixed-column text, or a YAML key path (soil.erodibility, items as key[2])\n";
 
 struct Arguments {
   std::string command, target, out, log_level = "info";
   std::vector<std::string> overrides;
+  std::vector<std::pair<std::string, std::string>> vars;  // templatize: NAME, LOCATION
   bool retry_failed = false;
 };
 
@@ -48,6 +58,12 @@ Arguments parse(int argc, char** argv) {
       a.out = value();
     } else if (s == "--log-level") {
       a.log_level = value();
+    } else if (s == "--var") {
+      const std::string v = value();
+      const auto eq = v.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
+        throw suite::InputError(fmt::format("--var '{}': write NAME=LOCATION, e.g. Kd=12:3 or Kd=soil.erodibility", v));
+      a.vars.emplace_back(v.substr(0, eq), v.substr(eq + 1));
     } else if (s == "--retry-failed") {
       a.retry_failed = true;
     } else if (suite::config::looks_like_override(s)) {
@@ -94,6 +110,24 @@ int main(int argc, char** argv) {
         throw suite::InputError(fmt::format("'{}' is not a study folder (no study.yaml)", dir.string()));
       const auto spec = suite::config::Config::from_file(dir / "study.yaml");
       suite::studies::run_study(spec, {dir, true, a.retry_failed, a.command == "analyze"}, log);
+      return 0;
+    }
+    if (a.command == "templatize") {
+      if (a.target.empty() || a.vars.empty())
+        throw suite::InputError(std::string("study templatize needs a file and at least one --var\n") + kUsage);
+      std::ifstream in(a.target);
+      if (!in) throw suite::InputError(fmt::format("cannot read '{}'", a.target));
+      std::stringstream text;
+      text << in.rdbuf();
+      const auto t = suite::studies::templatize(text.str(), a.target, a.vars);
+      if (a.out.empty()) {
+        std::fputs(t.text.c_str(), stdout);
+      } else {
+        suite::io::write_file_atomic(a.out, t.text);
+      }
+      for (const auto& [name, v] : t.values)
+        std::fprintf(stderr, "%s = %s (the value in %s)\n", name.c_str(), suite::studies::format_number(v).c_str(),
+                     a.target.c_str());
       return 0;
     }
     throw suite::InputError(fmt::format("unknown command '{}'\n{}", a.command, kUsage));
