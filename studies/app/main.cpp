@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/log/logger.hpp"
+#include "core/mpi/collective_try.hpp"
 #include "core/mpi/comm.hpp"
 #include "core/mpi/environment.hpp"
 #include "core/run/guarded_main.hpp"
@@ -88,16 +89,26 @@ int main(int argc, char** argv) {
       return 0;
     }
     const Arguments a = parse(argc, argv);
-    if (world.size() != 1)
-      throw suite::InputError(
-          "study runs as one process (its evaluations in threads); the MPI and Slurm "
-          "backends come with issue 6's next part");
     suite::Logger log(world, "study", {suite::parse_log_level(a.log_level), false, nullptr});
+    const bool mpi = world.size() > 1;  // rank 0 hands out evaluations to the other ranks
     if (a.command == "run") {
       if (a.target.empty()) throw suite::InputError(std::string("study run needs a specification file\n") + kUsage);
-      const auto spec = suite::config::Config::from_file(a.target, a.overrides);
       const std::string out = a.out.empty() ? "study-" + std::filesystem::path(a.target).stem().string() : a.out;
-      suite::studies::run_study(spec, {out, false, a.retry_failed}, log);
+      if (!mpi) {
+        suite::studies::run_study(suite::config::Config::from_file(a.target, a.overrides), {out, false, a.retry_failed},
+                                  log);
+        return 0;
+      }
+      // Rank 0 checks the specification and writes study.yaml (with any seed it drew); then every
+      // rank reads that file, so all of them build the same design.
+      suite::mpi::collective_try(world, [&] {
+        if (world.is_root()) {
+          suite::studies::StudyOptions prepare{out, false, false, false, &world, true};
+          suite::studies::run_study(suite::config::Config::from_file(a.target, a.overrides), prepare, log);
+        }
+      });
+      suite::studies::StudyOptions o{out, true, a.retry_failed, false, &world, false};
+      suite::studies::run_study(suite::config::Config::from_file(std::filesystem::path(out) / "study.yaml"), o, log);
       return 0;
     }
     if (a.command == "resume" || a.command == "analyze") {
@@ -109,10 +120,12 @@ int main(int argc, char** argv) {
       if (!std::filesystem::exists(dir / "study.yaml"))
         throw suite::InputError(fmt::format("'{}' is not a study folder (no study.yaml)", dir.string()));
       const auto spec = suite::config::Config::from_file(dir / "study.yaml");
-      suite::studies::run_study(spec, {dir, true, a.retry_failed, a.command == "analyze"}, log);
+      suite::studies::StudyOptions o{dir, true, a.retry_failed, a.command == "analyze", mpi ? &world : nullptr, false};
+      suite::studies::run_study(spec, o, log);
       return 0;
     }
     if (a.command == "templatize") {
+      if (!world.is_root()) return 0;
       if (a.target.empty() || a.vars.empty())
         throw suite::InputError(std::string("study templatize needs a file and at least one --var\n") + kUsage);
       std::ifstream in(a.target);

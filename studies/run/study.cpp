@@ -26,6 +26,7 @@
 #include "studies/ledger/ledger.hpp"
 #include "studies/model/model.hpp"
 #include "studies/plot/plot_command.hpp"
+#include "studies/run/mpi_workers.hpp"
 #include "studies/template/expression.hpp"
 
 namespace suite::studies {
@@ -91,22 +92,27 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
       execution.has("concurrency") ? static_cast<int>(execution.integer("concurrency", cores, 1, 4096)) : cores;
   spec.finish();
 
-  const auto out = std::filesystem::absolute(options.out);  // work directories are entered by programs
-  std::filesystem::create_directories(out);
+  const bool distributed = options.comm && options.comm->size() > 1;
+  const bool writer = !distributed || options.comm->is_root();  // the rank that writes files
+  const auto out = std::filesystem::absolute(options.out);      // work directories are entered by programs
   const auto ledger_path = out / "ledger.jsonl";
-  if (!options.resume && std::filesystem::exists(ledger_path))
-    throw InputError(
-        fmt::format("'{}' already holds a study (ledger.jsonl); continue it with `study resume {}` or "
-                    "choose another --out",
-                    out.string(), out.string()));
-  if (!options.resume) spec.write_effective(out / "study.yaml");
+  if (writer) {
+    std::filesystem::create_directories(out);
+    if (!options.resume && std::filesystem::exists(ledger_path))
+      throw InputError(
+          fmt::format("'{}' already holds a study (ledger.jsonl); continue it with `study resume {}` or "
+                      "choose another --out",
+                      out.string(), out.string()));
+    if (!options.resume) spec.write_effective(out / "study.yaml");
+  }
+  StudyCounts counts;
+  counts.points = design.points.size();
+  if (options.prepare_only) return counts;
 
   // Opening the ledger for appending repairs a line torn by a kill; `analyze` only reads it.
   std::optional<Ledger> ledger;
-  if (!options.analyze_only) ledger.emplace(ledger_path);
-  StudyCounts counts;
-  counts.points = design.points.size();
-  auto done = latest(ledger_path);
+  if (writer && !options.analyze_only) ledger.emplace(ledger_path);
+  auto done = writer ? latest(ledger_path) : std::map<long, LedgerEntry>{};
   for (const auto& [id, e] : done) {
     if (id < 1 || static_cast<std::size_t>(id) > design.points.size())
       throw InputError(
@@ -138,52 +144,61 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
   }
   if (options.analyze_only) pending.clear();
   const int threads = std::max(1, std::min<int>(concurrency, static_cast<int>(pending.size())));
-  log.info("{} study: {} points, {} to run ({} from the ledger), {} at a time{}", design.method, counts.points,
-           pending.size(), counts.reused, threads, concurrency > cores ? " (more than the cores available)" : "");
+  if (distributed)
+    log.info("{} study: {} points, {} to run ({} from the ledger), on {} worker ranks", design.method, counts.points,
+             pending.size(), counts.reused, options.comm->size() - 1);
+  else
+    log.info("{} study: {} points, {} to run ({} from the ledger), {} at a time{}", design.method, counts.points,
+             pending.size(), counts.reused, threads, concurrency > cores ? " (more than the cores available)" : "");
 
-  std::mutex mutex;
-  std::atomic<std::size_t> next{0};
-  std::size_t finished = 0, failed = 0;
+  // One evaluation, wherever it runs; its record, on the writing rank.
   const std::string host = host_name();
-  std::exception_ptr error;
-  auto worker = [&] {
-    try {
-      for (std::size_t k; (k = next++) < pending.size();) {
-        const long id = pending[k];
-        const auto& x = design.points[static_cast<std::size_t>(id - 1)];
-        std::map<std::string, double> values;
-        for (std::size_t i = 0; i < x.size(); ++i) values[var_names[i]] = x[i];
-        const auto t0 = std::chrono::steady_clock::now();
-        const Outcome o = model->evaluate(id, values);
-        LedgerEntry e{id,
-                      x,
-                      input_hash(var_names, x),
-                      o.ok,
-                      o.reason,
-                      o.responses,
-                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-                      host};
-        const std::lock_guard lock(mutex);
-        ledger->append(e);
-        ++finished;
-        if (!o.ok) {
-          ++failed;
-          log.warn("evaluation {} failed: {}", id, o.reason);
-        }
-        if (finished % std::max<std::size_t>(1, pending.size() / 10) == 0 || finished == pending.size())
-          log.info("{} / {} evaluations done ({} failed)", finished, pending.size(), failed);
-      }
-    } catch (...) {
-      const std::lock_guard lock(mutex);
-      if (!error) error = std::current_exception();
-      next = pending.size();
-    }
+  auto evaluate_one = [&](long id) {
+    const auto& x = design.points[static_cast<std::size_t>(id - 1)];
+    std::map<std::string, double> values;
+    for (std::size_t i = 0; i < x.size(); ++i) values[var_names[i]] = x[i];
+    const auto t0 = std::chrono::steady_clock::now();
+    RemoteOutcome r{id, model->evaluate(id, values), 0.0, host};
+    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
   };
-  std::vector<std::thread> pool;
-  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  std::mutex mutex;
+  std::size_t finished = 0, failed = 0;
+  auto record = [&](const RemoteOutcome& r) {
+    const auto& x = design.points[static_cast<std::size_t>(r.eval_id - 1)];
+    const std::lock_guard lock(mutex);
+    ledger->append({r.eval_id, x, input_hash(var_names, x), r.outcome.ok, r.outcome.reason, r.outcome.responses,
+                    r.wall_s, r.host});
+    ++finished;
+    if (!r.outcome.ok) {
+      ++failed;
+      log.warn("evaluation {} failed: {}", r.eval_id, r.outcome.reason);
+    }
+    if (finished % std::max<std::size_t>(1, pending.size() / 10) == 0 || finished == pending.size())
+      log.info("{} / {} evaluations done ({} failed)", finished, pending.size(), failed);
+  };
+
+  if (distributed) {
+    run_mpi_workers(*options.comm, pending, evaluate_one, record);
+    if (!writer) return counts;
+  } else {
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr error;
+    auto worker = [&] {
+      try {
+        for (std::size_t k; (k = next++) < pending.size();) record(evaluate_one(pending[k]));
+      } catch (...) {
+        const std::lock_guard lock(mutex);
+        if (!error) error = std::current_exception();
+        next = pending.size();
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
+  }
 
   const auto all = latest(ledger_path);
   write_tables(out, var_names, model->responses(), all);

@@ -5,7 +5,8 @@
 //   method:    {type: ...}      design/parameter_studies.hpp
 //   model:     {type: breach}   model/breach_model.hpp
 //   execution: {concurrency: N} default: the cores this process may use (its CPU affinity,
-//                               which Slurm and mpiexec set from the allocation)
+//                               which Slurm and mpiexec set from the allocation); under mpiexec
+//                               with several ranks, one evaluation per worker rank instead
 //
 // writes into the study folder
 //   study.yaml          the specification as run (defaults included); `study resume` reads it
@@ -22,6 +23,7 @@
 
 #include "core/config/config.hpp"
 #include "core/log/logger.hpp"
+#include "core/mpi/comm.hpp"
 
 namespace suite::studies {
 
@@ -30,6 +32,11 @@ struct StudyOptions {
   bool resume = false;
   bool retry_failed = false;
   bool analyze_only = false;  // `study analyze`: rebuild the tables and analysis.json, run nothing
+  // With a communicator of several ranks, rank 0 hands out evaluations to the others and alone
+  // writes files (run/mpi_workers.hpp); every rank must have read the same specification (the
+  // folder's study.yaml, written by a prepare_only call on rank 0). COLLECTIVE then.
+  const mpi::Comm* comm = nullptr;
+  bool prepare_only = false;  // check the specification and folder, write study.yaml, stop
 };
 
 struct StudyCounts {
