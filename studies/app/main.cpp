@@ -33,6 +33,10 @@ constexpr const char* kUsage =
     "      what failed)\n"
     "  study analyze DIR\n"
     "      rewrite DIR's tables and analysis.json from its ledger, running nothing\n"
+    "  study prepare SPEC.yaml [key.path=value ...] --out DIR\n"
+    "      check SPEC and write DIR/study.yaml only (before a Slurm array of `study resume DIR --shard`)\n"
+    "  study resume DIR --shard K/N\n"
+    "      array task K of N: run the evaluations with (id - 1) % N == K into DIR/ledger.K.jsonl\n"
     "  study templatize FILE --var NAME=LOCATION ... [--out TEMPLATE]\n"
     "      write a template of FILE (standard output by default): LOCATION is LINE:FIELD for\n"
     "      fixed-column text, or a YAML key path (soil.erodibility, items as key[2])\n";
@@ -42,6 +46,7 @@ struct Arguments {
   std::vector<std::string> overrides;
   std::vector<std::pair<std::string, std::string>> vars;  // templatize: NAME, LOCATION
   bool retry_failed = false;
+  int shard_index = 0, shard_count = 0;  // --shard K/N
 };
 
 Arguments parse(int argc, char** argv) {
@@ -65,6 +70,18 @@ Arguments parse(int argc, char** argv) {
       if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
         throw suite::InputError(fmt::format("--var '{}': write NAME=LOCATION, e.g. Kd=12:3 or Kd=soil.erodibility", v));
       a.vars.emplace_back(v.substr(0, eq), v.substr(eq + 1));
+    } else if (s == "--shard") {
+      const std::string v = value();
+      const auto slash = v.find('/');
+      try {
+        if (slash == std::string::npos) throw std::invalid_argument(v);
+        a.shard_index = std::stoi(v.substr(0, slash));
+        a.shard_count = std::stoi(v.substr(slash + 1));
+      } catch (const std::exception&) {
+        a.shard_count = 0;
+      }
+      if (a.shard_count < 1 || a.shard_index < 0 || a.shard_index >= a.shard_count)
+        throw suite::InputError(fmt::format("--shard '{}': write K/N with 0 <= K < N, e.g. 3/16", v));
     } else if (s == "--retry-failed") {
       a.retry_failed = true;
     } else if (suite::config::looks_like_override(s)) {
@@ -91,6 +108,17 @@ int main(int argc, char** argv) {
     const Arguments a = parse(argc, argv);
     suite::Logger log(world, "study", {suite::parse_log_level(a.log_level), false, nullptr});
     const bool mpi = world.size() > 1;  // rank 0 hands out evaluations to the other ranks
+    if (a.command == "prepare") {
+      if (a.target.empty() || a.out.empty())
+        throw suite::InputError(std::string("study prepare needs a specification and --out\n") + kUsage);
+      suite::mpi::collective_try(world, [&] {
+        if (world.is_root()) {
+          suite::studies::StudyOptions prepare{a.out, false, false, false, nullptr, true};
+          suite::studies::run_study(suite::config::Config::from_file(a.target, a.overrides), prepare, log);
+        }
+      });
+      return 0;
+    }
     if (a.command == "run") {
       if (a.target.empty()) throw suite::InputError(std::string("study run needs a specification file\n") + kUsage);
       const std::string out = a.out.empty() ? "study-" + std::filesystem::path(a.target).stem().string() : a.out;
@@ -120,7 +148,9 @@ int main(int argc, char** argv) {
       if (!std::filesystem::exists(dir / "study.yaml"))
         throw suite::InputError(fmt::format("'{}' is not a study folder (no study.yaml)", dir.string()));
       const auto spec = suite::config::Config::from_file(dir / "study.yaml");
-      suite::studies::StudyOptions o{dir, true, a.retry_failed, a.command == "analyze", mpi ? &world : nullptr, false};
+      suite::studies::StudyOptions o{
+          dir,   true,          a.retry_failed, a.command == "analyze", mpi ? &world : nullptr,
+          false, a.shard_index, a.shard_count};
       suite::studies::run_study(spec, o, log);
       return 0;
     }

@@ -5,6 +5,7 @@
 #include <sched.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -47,9 +48,25 @@ std::string host_name() {
 }
 
 // The latest entry of each evaluation in the ledger.
-std::map<long, LedgerEntry> latest(const std::filesystem::path& ledger) {
+// The latest entry of each evaluation over the ledger and its shards (ledger.<task>.jsonl of
+// Slurm array tasks): a successful entry wins over a failed one, then the later file.
+std::map<long, LedgerEntry> latest(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files{dir / "ledger.jsonl"};
+  std::vector<std::filesystem::path> shards;
+  std::error_code ec;
+  for (const auto& f : std::filesystem::directory_iterator(dir, ec)) {
+    const auto name = f.path().filename().string();
+    if (name.rfind("ledger.", 0) == 0 && name != "ledger.jsonl" && f.path().extension() == ".jsonl")
+      shards.push_back(f.path());
+  }
+  std::sort(shards.begin(), shards.end());
+  files.insert(files.end(), shards.begin(), shards.end());
   std::map<long, LedgerEntry> by_id;
-  for (auto& e : Ledger::read(ledger)) by_id[e.eval_id] = std::move(e);
+  for (const auto& file : files)
+    for (auto& e : Ledger::read(file)) {
+      auto it = by_id.find(e.eval_id);
+      if (it == by_id.end() || e.ok || !it->second.ok) by_id[e.eval_id] = std::move(e);
+    }
   return by_id;
 }
 
@@ -111,8 +128,10 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
 
   // Opening the ledger for appending repairs a line torn by a kill; `analyze` only reads it.
   std::optional<Ledger> ledger;
-  if (writer && !options.analyze_only) ledger.emplace(ledger_path);
-  auto done = writer ? latest(ledger_path) : std::map<long, LedgerEntry>{};
+  const bool sharded = options.shard_count > 0;
+  if (writer && !options.analyze_only)
+    ledger.emplace(sharded ? out / fmt::format("ledger.{}.jsonl", options.shard_index) : ledger_path);
+  auto done = writer ? latest(out) : std::map<long, LedgerEntry>{};
   for (const auto& [id, e] : done) {
     if (id < 1 || static_cast<std::size_t>(id) > design.points.size())
       throw InputError(
@@ -140,7 +159,7 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
         continue;
       }
     }
-    pending.push_back(id);
+    if (!sharded || (id - 1) % options.shard_count == options.shard_index) pending.push_back(id);
   }
   if (options.analyze_only) pending.clear();
   const int threads = std::max(1, std::min<int>(concurrency, static_cast<int>(pending.size())));
@@ -200,7 +219,12 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
     if (error) std::rethrow_exception(error);
   }
 
-  const auto all = latest(ledger_path);
+  if (sharded) {  // one array task of several: its shard is written; `study analyze` merges
+    log.info("array task {} of {}: {} evaluations done", options.shard_index, options.shard_count, finished);
+    counts.run = finished;
+    return counts;
+  }
+  const auto all = latest(out);
   write_tables(out, var_names, model->responses(), all);
   write_json_atomic(out / "analysis.json", analyze(design, var_names, model->responses(), all));
   if (plot) {

@@ -10,7 +10,8 @@
 //
 // writes into the study folder
 //   study.yaml          the specification as run (defaults included); `study resume` reads it
-//   ledger.jsonl        every evaluation as it ends (ledger/ledger.hpp)
+//   ledger.jsonl        every evaluation as it ends (ledger/ledger.hpp); array tasks write
+//                       ledger.<task>.jsonl shards, read together with it
 //   tabular.dat         Dakota's annotated tabular format, successful evaluations in id order
 //   tabular.csv         every evaluation: eval_id, status, variables, responses, reason
 //   analysis.json       statistics, correlations, regression, Sobol indices, Morris effects
@@ -37,6 +38,9 @@ struct StudyOptions {
   // folder's study.yaml, written by a prepare_only call on rank 0). COLLECTIVE then.
   const mpi::Comm* comm = nullptr;
   bool prepare_only = false;  // check the specification and folder, write study.yaml, stop
+  // A Slurm array task: run the evaluations with (id - 1) % shard_count == shard_index into the
+  // ledger shard ledger.<index>.jsonl and write no tables (`study analyze` merges the shards).
+  int shard_index = 0, shard_count = 0;
 };
 
 struct StudyCounts {
