@@ -52,9 +52,7 @@ Outcome BreachModel::evaluate(long, const std::map<std::string, double>& values)
     std::vector<std::string> overrides;
     for (const auto& [key, t] : set_) overrides.push_back(key + "=" + t.render(values));
     auto cfg = config::Config::from_file(scene_, overrides);
-    const auto scene = breach::Scene::read(cfg.root());
-    cfg.root().section_or_empty("output").get<bool>("plot", true);
-    cfg.finish();
+    const auto scene = breach::Scene::read_complete(cfg);
     const auto summary = breach::make_summary(breach::simulate(scene)).json();
     for (const auto& r : responses_) {
       const auto& v = summary.at(r);

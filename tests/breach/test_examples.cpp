@@ -17,9 +17,7 @@ const fs::path kExamples = SUITE_BREACH_EXAMPLES;
 
 Result run_file(const fs::path& file) {
   auto cfg = suite::config::Config::from_file(file);
-  const Scene s = Scene::read(cfg.root());
-  cfg.root().section_or_empty("output").get<bool>("plot", true);
-  cfg.finish();
+  const Scene s = Scene::read_complete(cfg);
   return simulate(s);
 }
 

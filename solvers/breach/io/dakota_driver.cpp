@@ -31,9 +31,7 @@ int run_dakota_driver(const std::optional<std::filesystem::path>& scene_file, co
   try {
     auto cfg = scene_file ? config::Config::from_file(*scene_file, all)
                           : config::Config::from_string(embedded_text, "<embedded embankment_overtopping.yaml>", all);
-    const Scene scene = Scene::read(cfg.root());
-    cfg.root().section_or_empty("output").get<bool>("plot", true);
-    cfg.finish();
+    const Scene scene = Scene::read_complete(cfg);
     const auto summary = make_summary(simulate(scene)).json();
     for (const auto& r : p.responses) {
       if (!summary.contains(r) || r == "units")

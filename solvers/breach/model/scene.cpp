@@ -94,4 +94,11 @@ Scene Scene::read(const config::Section& root) {
   return sc;
 }
 
+Scene Scene::read_complete(const config::Config& cfg) {
+  Scene scene = read(cfg.root());
+  cfg.root().section_or_empty("output").get<bool>("plot", true);
+  cfg.finish();
+  return scene;
+}
+
 }  // namespace suite::breach

@@ -89,6 +89,9 @@ struct Scene {
   // Reads the whole scene (the caller calls cfg.finish() after any keys of its own).
   // InputError names the key and the fix.
   static Scene read(const config::Section& root);
+  // Reads the scene of a run that writes no charts (library calls, the Dakota driver): accepts
+  // the executable's own `output.plot` key, then checks that no key is left unknown.
+  static Scene read_complete(const config::Config& cfg);
 };
 
 }  // namespace suite::breach
