@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -137,6 +138,22 @@ std::size_t CsvTable::find_row(const std::string& name, const std::string& value
   std::string msg = fmt::format("{}: no row with {} = '{}'", source_, name, value);
   if (auto best = closest_match(value, values)) msg += fmt::format("; did you mean '{}'?", *best);
   throw InputError(msg + fmt::format(" ({} values: {})", name, join(values)));
+}
+
+std::string csv_field(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  const bool quote = text.find_first_of(",\"") != std::string::npos ||
+                     (!text.empty() && (std::isspace(static_cast<unsigned char>(text.front())) ||
+                                        std::isspace(static_cast<unsigned char>(text.back()))));
+  if (!quote) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  out += '"';
+  return out;
 }
 
 }  // namespace suite::io

@@ -34,4 +34,8 @@ class CsvTable {
   std::vector<int> lines_;
 };
 
+// `text` as one CSV field that CsvTable reads back unchanged: quoted (with "" for a quote) when it
+// holds a comma, a quote or blanks at its ends; line breaks become spaces (a record is one line).
+std::string csv_field(std::string text);
+
 }  // namespace suite::io

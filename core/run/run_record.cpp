@@ -22,12 +22,13 @@ std::string utc_now() {
   gmtime_r(&t, &tm);
   return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", tm);
 }
-std::string hostname() {
+}  // namespace
+
+std::string host_name() {
   char buf[256] = {0};
   if (gethostname(buf, sizeof buf - 1) != 0) return "unknown";
   return buf;
 }
-}  // namespace
 
 void write_json_atomic(const std::filesystem::path& path, const nlohmann::json& j) {
   io::write_file_atomic(path, j.dump(2) + "\n");
@@ -57,7 +58,7 @@ nlohmann::json RunRecord::to_json(const PhaseTimers& timers, const std::string& 
       {"mpi_library", b.mpi},
       {"ranks", comm_.size()},
       {"threads_per_rank", threads ? std::atoi(threads) : 1},
-      {"host", hostname()},
+      {"host", host_name()},
       {"command_line", command_line_},
       {"started_utc", started_utc_},
       {"wall_time_s", comm_.max(wall_seconds())},

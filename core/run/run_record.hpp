@@ -50,6 +50,9 @@ class Summary {
 };
 
 // Pretty JSON written atomically (temp + fsync + rename). Not collective.
+// This machine's name ("unknown" if it cannot be read).
+std::string host_name();
+
 void write_json_atomic(const std::filesystem::path& path, const nlohmann::json& j);
 
 }  // namespace suite

@@ -1,15 +1,10 @@
 #include "studies/ledger/ledger.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <bit>
-#include <cerrno>
-#include <chrono>
 #include <cmath>
-#include <cstring>
 #include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "core/errors.hpp"
@@ -44,50 +39,21 @@ std::vector<double> numbers(const nlohmann::json& a) {
 }
 }  // namespace
 
-Ledger::Ledger(std::filesystem::path path) : path_(std::move(path)) {
-  // A line torn by a kill mid-write is cut off first, so new lines start on a line of their own.
-  std::error_code ec;
-  if (std::filesystem::exists(path_, ec)) {
-    std::ifstream in(path_, std::ios::binary);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const auto end = text.rfind('\n');
-    const std::size_t keep = end == std::string::npos ? 0 : end + 1;
-    bool complete = false;  // a whole entry whose newline was lost is kept, and ended
-    if (keep != text.size()) {
-      try {
-        complete = nlohmann::json::parse(text.substr(keep)).contains("eval_id");
-      } catch (const nlohmann::json::exception&) {
-      }
-      if (!complete) std::filesystem::resize_file(path_, keep);
-    }
-    file_ = std::fopen(path_.c_str(), "ae");
-    if (file_ && complete) std::fputc('\n', file_);
-  }
-  if (!file_) file_ = std::fopen(path_.c_str(), "ae");
-  if (!file_)
-    throw InputError(
-        fmt::format("cannot open the study ledger '{}' for appending: {}", path_.string(), std::strerror(errno)));
-}
-
-Ledger::~Ledger() {
-  if (file_) ::fsync(fileno(file_)), std::fclose(file_);
-}
+Ledger::Ledger(std::filesystem::path path)
+    : log_(std::move(path), "study ledger", [](const std::string& last) {
+        try {
+          return nlohmann::json::parse(last).contains("eval_id");
+        } catch (const nlohmann::json::exception&) {
+          return false;
+        }
+      }) {}
 
 void Ledger::append(const LedgerEntry& e) {
   const nlohmann::json j = {{"eval_id", e.eval_id}, {"inputs", numbers(e.inputs)},
                             {"hash", e.hash},       {"status", e.ok ? "ok" : "failed"},
                             {"reason", e.reason},   {"responses", numbers(e.responses)},
                             {"wall_s", e.wall_s},   {"host", e.host}};
-  const std::string line = j.dump() + "\n";
-  // Flushed at once (a killed process loses nothing written); fsynced at most once a second
-  // (a node failure loses at most the last second), so millisecond models are not disk-bound.
-  const auto now = std::chrono::steady_clock::now();
-  const bool sync = now - last_sync_ > std::chrono::seconds(1);
-  if (sync) last_sync_ = now;
-  if (std::fwrite(line.data(), 1, line.size(), file_) != line.size() || std::fflush(file_) != 0 ||
-      (sync && ::fsync(fileno(file_)) != 0))
-    throw std::runtime_error(
-        fmt::format("cannot write the study ledger '{}': {}", path_.string(), std::strerror(errno)));
+  log_.append(j.dump());
 }
 
 std::vector<LedgerEntry> Ledger::read(const std::filesystem::path& path) {

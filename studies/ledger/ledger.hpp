@@ -10,11 +10,11 @@
 //
 // A resumed study reads it back and runs only what has no "ok" line (and, with --retry-failed,
 // what failed). The hash of the inputs guards against resuming with a changed design.
-#include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "core/io/append_log.hpp"
 
 namespace suite::studies {
 
@@ -35,9 +35,6 @@ std::string input_hash(const std::vector<std::string>& names, const std::vector<
 class Ledger {
  public:
   explicit Ledger(std::filesystem::path path);  // opens for appending (creates it)
-  ~Ledger();
-  Ledger(const Ledger&) = delete;
-  Ledger& operator=(const Ledger&) = delete;
 
   void append(const LedgerEntry& e);  // one line, flushed
   // Every entry of an existing ledger, in file order; a torn last line (a kill mid-write) is
@@ -45,9 +42,7 @@ class Ledger {
   static std::vector<LedgerEntry> read(const std::filesystem::path& path);
 
  private:
-  std::filesystem::path path_;
-  std::FILE* file_ = nullptr;
-  std::chrono::steady_clock::time_point last_sync_{};
+  io::AppendLog log_;
 };
 
 }  // namespace suite::studies

@@ -21,6 +21,7 @@
 #include "core/dakota/tabular_file.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/csv_table.hpp"
 #include "core/run/run_record.hpp"
 #include "studies/analysis/report.hpp"
 #include "studies/design/parameter_studies.hpp"
@@ -40,12 +41,6 @@ int available_cores() {
 }
 
 namespace {
-
-std::string host_name() {
-  char host[256] = {0};
-  gethostname(host, sizeof host - 1);
-  return host;
-}
 
 // The latest entry of each evaluation in the ledger.
 // The latest entry of each evaluation over the ledger and its shards (ledger.<task>.jsonl of
@@ -85,10 +80,7 @@ void write_tables(const std::filesystem::path& out, const std::vector<std::strin
     for (double x : e.inputs) fmt::format_to(std::back_inserter(csv), ",{}", format_number(x));
     for (double x : e.responses)
       fmt::format_to(std::back_inserter(csv), ",{}", std::isfinite(x) ? fmt::format("{:.17g}", x) : "");
-    std::string reason = e.reason;
-    for (char& c : reason)
-      if (c == '"') c = '\'';
-    fmt::format_to(std::back_inserter(csv), ",\"{}\"\n", reason);
+    fmt::format_to(std::back_inserter(csv), ",{}\n", io::csv_field(e.reason));
   }
   io::write_file_atomic(out / "tabular.csv", csv);
 }

@@ -1,0 +1,165 @@
+#include "carving/measure/hull_measurement.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "carving/mesh/marching_cubes.hpp"
+#include "core/errors.hpp"
+
+namespace suite::carving {
+namespace {
+
+// Cubic voxels covering [lo, hi], `resolution` of them along the longest side, centred on the box.
+VoxelGrid box_grid(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int resolution) {
+  const Eigen::Vector3d size = hi - lo;
+  const double voxel = size.maxCoeff() / resolution;
+  VoxelGrid g;
+  g.voxel = Eigen::Vector3d::Constant(voxel);
+  for (int a = 0; a < 3; ++a) g.n[a] = std::max(1, static_cast<int>(std::ceil(size[a] / voxel - 1e-9)));
+  const Eigen::Vector3d covered(g.n[0] * voxel, g.n[1] * voxel, g.n[2] * voxel);
+  g.lo = (lo + hi) / 2 - covered / 2;
+  return g;
+}
+
+// Kept volume as weighted boxes: (first voxel, last voxel, weight per voxel).
+struct WeightedBox {
+  std::array<int, 3> first, last;
+  double weight;
+};
+
+std::vector<WeightedBox> kept_boxes(const CarveResult& r) {
+  std::vector<WeightedBox> boxes;
+  for (const Block& b : r.inside)
+    boxes.push_back({{b.i, b.j, b.k},
+                     {std::min(b.i + b.size, r.grid.n[0]) - 1, std::min(b.j + b.size, r.grid.n[1]) - 1,
+                      std::min(b.k + b.size, r.grid.n[2]) - 1},
+                     1.0});
+  for (const BoundaryVoxel& v : r.boundary)  // fraction 1 for kept centres without sub-samples
+    if (v.fraction > 0) boxes.push_back({{v.i, v.j, v.k}, {v.i, v.j, v.k}, v.fraction});
+  return boxes;
+}
+
+// Principal axes of the kept volume and the extents along them (longest first).
+void principal_dimensions(const CarveResult& r, HullMeasurement& m) {
+  const auto boxes = kept_boxes(r);
+  const VoxelGrid& g = r.grid;
+  double volume = 0;
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second_moment = Eigen::Matrix3d::Zero();
+  for (const auto& b : boxes) {
+    const Eigen::Vector3d lo = g.lo + Eigen::Vector3d(b.first[0], b.first[1], b.first[2]).cwiseProduct(g.voxel);
+    const Eigen::Vector3d hi =
+        g.lo + Eigen::Vector3d(b.last[0] + 1, b.last[1] + 1, b.last[2] + 1).cwiseProduct(g.voxel);
+    const Eigen::Vector3d size = hi - lo, c = (lo + hi) / 2;
+    const double v = size.prod() * b.weight;
+    volume += v;
+    first_moment += v * c;
+    second_moment += v * (c * c.transpose());
+    second_moment.diagonal() += v * size.cwiseAbs2() / 12.0;  // a uniform box about its centre
+  }
+  const Eigen::Vector3d centroid = first_moment / volume;
+  const Eigen::Matrix3d covariance = second_moment / volume - centroid * centroid.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
+  // Eigen sorts eigenvalues ascending: the longest axis is the last.
+  for (int a = 0; a < 3; ++a) m.axes.col(a) = eigen.eigenvectors().col(2 - a);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& b : boxes)
+    for (int c = 0; c < 8; ++c) {
+      const Eigen::Vector3d corner =
+          g.lo + Eigen::Vector3d((c & 1) ? b.last[0] + 1 : b.first[0], (c & 2) ? b.last[1] + 1 : b.first[1],
+                                 (c & 4) ? b.last[2] + 1 : b.first[2])
+                     .cwiseProduct(g.voxel);
+      const Eigen::Vector3d p = m.axes.transpose() * (corner - centroid);
+      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    }
+  m.length_mm = hi[0] - lo[0];
+  m.width_mm = hi[1] - lo[1];
+  m.thickness_mm = hi[2] - lo[2];
+}
+
+// The occupancy fractions of a carve at voxel centres, with one empty layer all round.
+ScalarField occupancy_field(const CarveResult& r) {
+  const VoxelGrid& g = r.grid;
+  ScalarField f;
+  f.n = {g.n[0] + 2, g.n[1] + 2, g.n[2] + 2};
+  f.spacing = g.voxel.x();
+  f.origin = g.lo + g.voxel / 2 - g.voxel;
+  f.values.assign(static_cast<std::size_t>(f.n[0]) * f.n[1] * f.n[2], 0.0f);
+  auto set = [&](int i, int j, int k, float v) {
+    f.values[static_cast<std::size_t>(i + 1) + f.n[0] * (static_cast<std::size_t>(j + 1) + f.n[1] * (k + 1))] = v;
+  };
+  for (const auto& b : kept_boxes(r))
+    for (int k = b.first[2]; k <= b.last[2]; ++k)
+      for (int j = b.first[1]; j <= b.last[1]; ++j)
+        for (int i = b.first[0]; i <= b.last[0]; ++i) set(i, j, k, static_cast<float>(b.weight));
+  return f;
+}
+
+}  // namespace
+
+double pixels_per_mm_at_origin(const View& view) {
+  const Eigen::Vector2d o = project(view.P, Eigen::Vector3d::Zero());
+  const Eigen::Vector2d y = project(view.P, Eigen::Vector3d(0, 1e-3, 0));
+  return (y - o).norm() / 1e-3;
+}
+
+VoxelGrid search_cube(const std::vector<View>& views, const HullOptions& options, int resolution) {
+  double side = std::numeric_limits<double>::infinity();
+  for (const View& v : views) side = std::min(side, std::min(v.width, v.height) / pixels_per_mm_at_origin(v));
+  if (options.search_side_mm) side = *options.search_side_mm;
+  return VoxelGrid::cube(options.search_centre.value_or(Eigen::Vector3d::Zero()), side, resolution);
+}
+
+HullMeasurement measure_hull(const std::vector<View>& views, const std::vector<Mask>& masks,
+                             const HullOptions& options) {
+  if (options.resolution < 4 || options.resolution > 4096)
+    throw InputError(fmt::format("carving.resolution = {}: give 4 to 4096 voxels along the seed", options.resolution));
+  if (options.search_resolution < 8 || options.search_resolution > 512)
+    throw InputError(fmt::format("carving.search_resolution = {}: give 8 to 512", options.search_resolution));
+  if (views.empty()) throw InputError("carving needs at least one view");
+  // 1. Find the seed in the region all cameras see.
+  const VoxelGrid search = search_cube(views, options, options.search_resolution);
+  const double side = search.voxel.x() * search.n[0];
+  const CarveResult coarse = carve(views, masks, search);
+  if (coarse.voxels == 0)
+    throw InputError(
+        fmt::format("no voxel of the {:.3g} mm search cube survives carving with {} views: the "
+                    "silhouettes and the camera calibration do not agree (check the camera "
+                    "distance, the angles and where the calibrated image sits in the photographs)",
+                    side, views.size()));
+  for (int a = 0; a < 3; ++a)
+    if (coarse.first[a] == 0 || coarse.last[a] == search.n[a] - 1)
+      throw InputError(
+          fmt::format("the seed reaches the border of the {:.3g} mm search cube (axis {}): it may be "
+                      "cut off; give carving.search_side larger than the seed",
+                      side, "xyz"[a]));
+  // 2. The seed's box, one coarse voxel of margin all round, at the requested resolution.
+  const Eigen::Vector3d lo =
+      search.lo +
+      Eigen::Vector3d(coarse.first[0] - 1, coarse.first[1] - 1, coarse.first[2] - 1).cwiseProduct(search.voxel);
+  const Eigen::Vector3d hi =
+      search.lo +
+      Eigen::Vector3d(coarse.last[0] + 2, coarse.last[1] + 2, coarse.last[2] + 2).cwiseProduct(search.voxel);
+  HullMeasurement m;
+  m.grid = box_grid(lo, hi, options.resolution);
+  const CarveResult fine = carve(views, masks, m.grid, {options.subvoxel_samples, true});
+  m.voxels = fine.voxels;
+  m.volume_mm3 = fine.subvoxel_volume_mm3;
+  m.stats = fine.stats;
+  principal_dimensions(fine, m);
+  // 4. The surface, from occupancy fractions (2^3 samples per boundary voxel) at mesh resolution.
+  m.surface_mm2 = std::nan("");
+  if (options.mesh) {
+    const VoxelGrid mesh_grid = box_grid(lo, hi, options.mesh_resolution);
+    const CarveResult occupancy = carve(views, masks, mesh_grid, {2, true});
+    m.mesh = marching_cubes(occupancy_field(occupancy), 0.5f);
+    m.surface_mm2 = surface_area(m.mesh);
+  }
+  return m;
+}
+
+}  // namespace suite::carving

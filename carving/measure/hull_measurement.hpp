@@ -1,0 +1,56 @@
+#pragma once
+// One seed's size from its silhouettes (spec/carving.md, multi-view volume carving), modelling no
+// more space than the seed fills:
+//   1. a coarse carve of the region every camera sees finds the seed's bounding box;
+//   2. the box is carved at `resolution` voxels along its longest side (hierarchically, so the
+//      work follows the surface), optionally with sub-voxel samples at the boundary;
+//   3. length, width and thickness are the seed's extents along the principal axes of the kept
+//      volume (longest first);
+//   4. optionally a marching-cubes surface of the occupancy fractions at `mesh_resolution` gives
+//      the surface area and a PLY mesh.
+#include <optional>
+
+#include "carving/camera/camera.hpp"
+#include "carving/hull/carver.hpp"
+#include "carving/image/mask.hpp"
+#include "carving/mesh/surface_mesh.hpp"
+
+namespace suite::carving {
+
+struct HullOptions {
+  int resolution = 256;        // voxels along the longest side of the seed's box
+  int subvoxel_samples = 0;    // s^3 samples in boundary voxels (0: voxel centres)
+  int search_resolution = 48;  // voxels per side of the coarse search carve
+  // The searched cube; default: centred on the world origin (the turntable axis), as large as
+  // the smallest image shows at the origin's distance.
+  std::optional<Eigen::Vector3d> search_centre;
+  std::optional<double> search_side_mm;
+  bool mesh = true;
+  int mesh_resolution = 128;  // voxels along the longest side for the surface
+};
+
+struct HullMeasurement {
+  double volume_mm3 = 0;  // sub-voxel volume when subvoxel_samples > 0, else kept voxels x voxel volume
+  long long voxels = 0;   // kept voxel centres at `resolution`
+  double length_mm = 0, width_mm = 0, thickness_mm = 0;
+  double surface_mm2 = 0;                              // NaN without a mesh
+  VoxelGrid grid;                                      // the carved box
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // principal axes (columns: length, width, thickness)
+  SurfaceMesh mesh;
+  CarveStats stats;  // of the fine carve
+};
+
+// Throws InputError when no voxel survives (the silhouettes and cameras do not agree) or the
+// seed touches the searched region's border (it may be cut off).
+HullMeasurement measure_hull(const std::vector<View>& views, const std::vector<Mask>& masks,
+                             const HullOptions& options);
+
+// The cube measure_hull() searches for the seed: options.search_side_mm and search_centre, by
+// default centred on the origin and as large as the smallest image shows at the origin, with
+// `resolution` voxels per side.
+VoxelGrid search_cube(const std::vector<View>& views, const HullOptions& options, int resolution);
+
+// Pixels per mm at the world origin in `view` (the scale of the turntable axis in the image).
+double pixels_per_mm_at_origin(const View& view);
+
+}  // namespace suite::carving

@@ -1,0 +1,183 @@
+#include "carving/measure/measure_seed.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+
+#include "carving/image/segmentation.hpp"
+#include "carving/measure/hull_measurement.hpp"
+#include "carving/render/renderer.hpp"
+#include "carving/slicing/two_view.hpp"
+#include "core/errors.hpp"
+#include "core/run/run_record.hpp"
+
+namespace suite::carving {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+struct SegmentedView {
+  std::filesystem::path file;
+  cv::Mat image;
+  Segmentation segmentation;
+};
+
+// Every image read and segmented; the first image that cannot be read, has another size than
+// the first, or shows no plausible seed fails the seed, naming the file.
+std::vector<SegmentedView> segment_views(const std::vector<std::filesystem::path>& files,
+                                         const SegmentationOptions& options) {
+  std::vector<SegmentedView> views;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    SegmentedView v{files[i], read_image(files[i]), {}};
+    if (!views.empty() && v.image.size() != views[0].image.size())
+      throw InputError(fmt::format(
+          "image '{}' is {} x {} px but '{}' is {} x {} px; all views of a seed must have "
+          "one size",
+          files[i].string(), v.image.cols, v.image.rows, files[0].string(), views[0].image.cols, views[0].image.rows));
+    v.segmentation = segment(v.image, options);
+    if (!v.segmentation.found)
+      throw InputError(fmt::format("view {} ('{}'): {}", i + 1, files[i].filename().string(), v.segmentation.reason));
+    views.push_back(std::move(v));
+  }
+  return views;
+}
+
+// The views side by side, contours in green (and `lines` per view in red), at most `columns`
+// across, each cropped to the seed (the union of the contours' boxes and a margin) and scaled to
+// `tile_width` px: small enough to keep one per seed in a batch of thousands.
+cv::Mat overlay_montage(const std::vector<SegmentedView>& views,
+                        const std::vector<std::vector<OverlayLine>>& lines = {}, int columns = 6,
+                        int tile_width = 200) {
+  const int n = static_cast<int>(views.size());
+  cv::Rect crop = views[0].segmentation.bounding_box;
+  for (const auto& v : views) crop |= v.segmentation.bounding_box;
+  const int margin = std::max(4, std::max(crop.width, crop.height) / 8);
+  crop = cv::Rect(crop.x - margin, crop.y - margin, crop.width + 2 * margin, crop.height + 2 * margin) &
+         cv::Rect(0, 0, views[0].image.cols, views[0].image.rows);
+  const int cols = std::min(columns, n), rows = (n + cols - 1) / cols;
+  const double scale = static_cast<double>(tile_width) / crop.width;
+  const int tile_height = std::max(1, static_cast<int>(std::round(crop.height * scale)));
+  cv::Mat montage(rows * tile_height, cols * tile_width, CV_8UC3, cv::Scalar(0, 0, 0));
+  for (int i = 0; i < n; ++i) {
+    cv::Mat drawn = views[i].image.clone();
+    if (drawn.channels() == 1) cv::cvtColor(drawn, drawn, cv::COLOR_GRAY2BGR);
+    cv::drawContours(drawn, std::vector<std::vector<cv::Point>>{views[i].segmentation.contour}, 0,
+                     cv::Scalar(0, 255, 0), 1);
+    if (i < static_cast<int>(lines.size()))
+      for (const auto& l : lines[i]) cv::line(drawn, l.from, l.to, cv::Scalar(0, 0, 255), 1);
+    cv::Mat tile;
+    cv::resize(drawn(crop), tile, cv::Size(tile_width, tile_height), 0, 0,
+               scale < 1 ? cv::INTER_AREA : cv::INTER_NEAREST);
+    tile.copyTo(montage(cv::Rect((i % cols) * tile_width, (i / cols) * tile_height, tile_width, tile_height)));
+  }
+  return montage;
+}
+
+void measure_by_carving(const std::vector<SegmentedView>& segmented, const SeedProfile& profile,
+                        const std::filesystem::path& dir, SeedRow& row, nlohmann::json& record) {
+  std::vector<Mask> masks;
+  for (const auto& v : segmented) masks.push_back(v.segmentation.mask);
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<Registration> reg;
+  const auto views = seed_views(profile.camera, profile.hull, masks, reg);
+  if (reg)
+    record["registration"] = {{"axis_column_px", reg->column},
+                              {"origin_row_px", reg->axis.row},
+                              {"axis_fit_residual_px", reg->axis.residual_px},
+                              {"orbit_radius_px", reg->axis.orbit_radius_px},
+                              {"calibrated_image_origin_px", {reg->placement.x0, reg->placement.y0}},
+                              {"scale", reg->placement.scale},
+                              {"turn", reg->placement.mirrored ? "reversed" : "same"},
+                              {"search_volume_mm3", reg->volume_mm3},
+                              {"other_turn_search_volume_mm3", reg->other_sense_volume_mm3}};
+  const HullMeasurement hull = measure_hull(views, masks, profile.hull);
+  const double carve_s = seconds_since(start);
+  row.length_mm = hull.length_mm, row.width_mm = hull.width_mm, row.thickness_mm = hull.thickness_mm;
+  row.volume_mm3 = hull.volume_mm3;
+  row.surface_mm2 = hull.surface_mm2;
+  write_png(dir / "overlays.png", overlay_montage(segmented));
+  if (profile.hull.mesh) write_ply(dir / "surface.ply", hull.mesh);
+  record["carving"] = {{"voxels", hull.voxels},
+                       {"voxel_mm", hull.grid.voxel.x()},
+                       {"grid", hull.grid.n},
+                       {"box_lo_mm", {hull.grid.lo.x(), hull.grid.lo.y(), hull.grid.lo.z()}},
+                       {"cells_tested", hull.stats.cells},
+                       {"view_tests", hull.stats.view_tests},
+                       {"point_tests", hull.stats.point_tests},
+                       {"mesh_triangles", hull.mesh.triangles.size()},
+                       {"views_carve_and_mesh_s", carve_s}};
+}
+
+void measure_by_slicing(const std::vector<SegmentedView>& segmented, const SeedProfile& profile,
+                        const std::filesystem::path& dir, SeedRow& row, nlohmann::json& record) {
+  if (segmented.size() != 2)
+    throw InputError(
+        fmt::format("the slicing method needs two images, the top view then the side view; this seed "
+                    "has {}",
+                    segmented.size()));
+  const TwoViewResult r =
+      measure_two_view(segmented[0].segmentation.mask, segmented[1].segmentation.mask, profile.slicing);
+  row.length_mm = r.length_mm, row.width_mm = r.width_mm, row.thickness_mm = r.thickness_mm;
+  row.volume_mm3 = r.volume_mm3;
+  row.surface_mm2 = std::nan("");
+  std::vector<std::vector<OverlayLine>> lines(2);
+  for (const Slice& s : r.slices) {
+    lines[0].push_back({{s.top_x_px, r.top_box.y0 - 0.5}, {s.top_x_px, r.top_box.y1 + 0.5}});
+    lines[1].push_back({{s.side_x_px, r.side_box.y0 - 0.5}, {s.side_x_px, r.side_box.y1 + 0.5}});
+  }
+  write_png(dir / "overlays.png", overlay_montage(segmented, lines, 2, 640));
+  record["slicing"] = {{"slices", r.slices.size()},
+                       {"scale_correction", r.scale},
+                       {"px_per_mm_top", profile.slicing.px_per_mm_top},
+                       {"px_per_mm_side", r.px_per_mm_side}};
+}
+
+}  // namespace
+
+SeedRow measure_seed(const SeedEntry& seed, const SeedProfile& profile, const std::filesystem::path& dir) {
+  const auto start = std::chrono::steady_clock::now();
+  SeedRow row;
+  row.id = seed.id;
+  row.host = host_name();
+  row.method = seed.method.empty() ? profile.method : seed.method;
+  row.length_mm = row.width_mm = row.thickness_mm = row.volume_mm3 = std::nan("");
+  row.surface_mm2 = row.density_mg_mm3 = std::nan("");
+  try {
+    if (row.method != profile.method)
+      throw InputError(fmt::format("method '{}' but profile '{}' is for {}; name a {} profile for this seed",
+                                   row.method, profile.source, profile.method, row.method));
+    std::filesystem::create_directories(dir);
+    const auto files = seed_image_files(seed);
+    row.n_views = static_cast<int>(files.size());
+    const auto segmented = segment_views(files, profile.segmentation);
+    nlohmann::json record = {{"id", seed.id}, {"method", row.method}, {"profile", profile.source}};
+    for (const auto& v : segmented) record["images"].push_back(v.file.string());
+    if (row.method == "carving") {
+      measure_by_carving(segmented, profile, dir, row, record);
+    } else {
+      measure_by_slicing(segmented, profile, dir, row, record);
+    }
+    if (seed.weight_mg) row.density_mg_mm3 = density_mg_per_mm3(*seed.weight_mg, row.volume_mm3);
+    record["length_mm"] = row.length_mm;
+    record["width_mm"] = row.width_mm;
+    record["thickness_mm"] = row.thickness_mm;
+    record["volume_mm3"] = row.volume_mm3;
+    if (std::isfinite(row.surface_mm2)) record["surface_mm2"] = row.surface_mm2;
+    if (seed.weight_mg) record["weight_mg"] = *seed.weight_mg, record["density_mg_mm3"] = row.density_mg_mm3;
+    write_json_atomic(dir / "seed.json", record);
+    row.ok = true;
+  } catch (const std::exception& e) {  // a bad seed fails its row, never the batch
+    row.ok = false;
+    row.message = e.what();
+  }
+  row.wall_s = seconds_since(start);
+  return row;
+}
+
+}  // namespace suite::carving
