@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "carving/app/calibrate_command.hpp"
 #include "carving/batch/manifest.hpp"
 #include "carving/batch/results_table.hpp"
 #include "carving/batch/run_batch.hpp"
@@ -43,13 +44,19 @@ constexpr const char* kUsage =
     "  seedcarve carve CARVE_INPUT.dat [--resolution N] [--subvoxel S]\n"
     "      carve the masks and projection matrices of a carve_input.dat file (Kansas State format)\n"
     "  seedcarve render SCENE.yaml --out DIR [key.path=value ...]\n"
-    "      synthetic photographs and exact masks of an analytic seed, its true volume and a profile\n";
+    "      synthetic photographs and exact masks of an analytic seed, its true volume and a profile\n"
+    "  seedcarve calibrate ball IMAGES... --diameter MM [--focal PX] [--profile P] [--out DIR]\n"
+    "  seedcarve calibrate chessboard IMAGES... --corners CxR --square MM [--out DIR]\n"
+    "  seedcarve calibrate axis IMAGES... --profile P [--out DIR]\n"
+    "      px/mm and camera distance from a reference ball; K from chessboard photographs; the\n"
+    "      turntable axis from one turn of a seed; writes DIR/calibration.json and DIR/camera.yaml\n";
 
 struct Arguments {
   std::string command;
   std::vector<std::string> targets, overrides;
   std::string out, profile, id, log_level = "info";
-  std::optional<double> weight;
+  std::optional<double> weight, diameter, focal, square;
+  std::string corners;
   int resolution = 0, subvoxel = 0;
   bool retry_failed = false;
   int shard_index = 0, shard_count = 0;
@@ -86,6 +93,14 @@ Arguments parse(int argc, char** argv) {
       a.id = value();
     } else if (s == "--weight") {
       a.weight = number_argument(s, value());
+    } else if (s == "--diameter") {
+      a.diameter = number_argument(s, value());
+    } else if (s == "--focal") {
+      a.focal = number_argument(s, value());
+    } else if (s == "--square") {
+      a.square = number_argument(s, value());
+    } else if (s == "--corners") {
+      a.corners = value();
     } else if (s == "--resolution") {
       a.resolution = static_cast<int>(number_argument(s, value()));
     } else if (s == "--subvoxel") {
@@ -199,6 +214,14 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (a.command == "carve") return carve_file(a, log);
+    if (a.command == "calibrate") {
+      if (a.targets.empty()) throw suite::InputError(std::string("seedcarve calibrate needs ball, chessboard or axis\n") + kUsage);
+      suite::carving::CalibrateRequest r{a.targets[0], {a.targets.begin() + 1, a.targets.end()}, a.profile, a.overrides,
+                                         a.diameter, a.focal, a.square, a.corners,
+                                         a.out.empty() ? "seedcarve-calibration" : a.out};
+      suite::carving::run_calibrate(r, log);
+      return 0;
+    }
     if (a.command == "render") {
       expect_one_target(a, "one scene file");
       if (a.out.empty()) throw suite::InputError("seedcarve render needs --out DIR");

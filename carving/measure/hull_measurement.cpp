@@ -155,9 +155,10 @@ HullMeasurement measure_hull(const std::vector<View>& views, const std::vector<M
   m.surface_mm2 = std::nan("");
   if (options.mesh) {
     const VoxelGrid mesh_grid = box_grid(lo, hi, options.mesh_resolution);
-    const CarveResult occupancy = carve(views, masks, mesh_grid, {2, true});
-    m.mesh = marching_cubes(occupancy_field(occupancy), 0.5f);
+    ScalarField occupancy = occupancy_field(carve(views, masks, mesh_grid, {2, true}));
+    m.mesh = marching_cubes(occupancy, 0.5f);
     m.surface_mm2 = surface_area(m.mesh);
+    if (options.keep_occupancy) m.occupancy = std::move(occupancy);
   }
   return m;
 }

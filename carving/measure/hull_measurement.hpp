@@ -13,6 +13,7 @@
 #include "carving/camera/camera.hpp"
 #include "carving/hull/carver.hpp"
 #include "carving/image/mask.hpp"
+#include "carving/mesh/marching_cubes.hpp"
 #include "carving/mesh/surface_mesh.hpp"
 
 namespace suite::carving {
@@ -27,6 +28,7 @@ struct HullOptions {
   std::optional<double> search_side_mm;
   bool mesh = true;
   int mesh_resolution = 128;  // voxels along the longest side for the surface
+  bool keep_occupancy = false;  // keep the occupancy fractions the mesh is made from (HDF5 output)
 };
 
 struct HullMeasurement {
@@ -37,6 +39,7 @@ struct HullMeasurement {
   VoxelGrid grid;                                      // the carved box
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // principal axes (columns: length, width, thickness)
   SurfaceMesh mesh;
+  ScalarField occupancy;   // at mesh_resolution, when options.keep_occupancy (and mesh)
   CarveStats stats;  // of the fine carve
 };
 

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "carving/image/segmentation.hpp"
+#include "carving/io/voxel_output.hpp"
 #include "carving/measure/hull_measurement.hpp"
 #include "carving/render/renderer.hpp"
 #include "carving/slicing/two_view.hpp"
@@ -103,6 +104,7 @@ void measure_by_carving(const std::vector<SegmentedView>& segmented, const SeedP
   row.surface_mm2 = hull.surface_mm2;
   write_png(dir / "overlays.png", overlay_montage(segmented));
   if (profile.hull.mesh) write_ply(dir / "surface.ply", hull.mesh);
+  if (profile.hull.keep_occupancy) write_occupancy_h5(dir / "voxels.h5", hull.occupancy);
   record["carving"] = {{"voxels", hull.voxels},
                        {"voxel_mm", hull.grid.voxel.x()},
                        {"grid", hull.grid.n},

@@ -21,6 +21,8 @@ std::vector<double> numbers(const config::Section& s, const std::string& key, st
   return v;
 }
 
+}  // namespace
+
 SegmentationOptions read_segmentation(const config::Section& s) {
   SegmentationOptions o;
   const auto low = numbers(s, "hsv_low", {0, 60, 0}, 3, 0, 255);
@@ -37,8 +39,6 @@ SegmentationOptions read_segmentation(const config::Section& s) {
   o.max_area = area[1];
   return o;
 }
-
-}  // namespace
 
 CameraProfile read_camera_profile(const config::Section& s) {
   CameraProfile c;
@@ -91,6 +91,8 @@ SeedProfile read_seed_profile(const config::Config& cfg) {
     if (c.has("search_side")) p.hull.search_side_mm = c.quantity("search_side", "mm", config::Range::positive());
     p.hull.mesh = c.get<bool>("mesh", true);
     p.hull.mesh_resolution = static_cast<int>(c.integer("mesh_resolution", 128, 8, 1024));
+    p.hull.keep_occupancy = c.get<bool>("voxels_h5", false);
+    if (p.hull.keep_occupancy && !p.hull.mesh) c.reject("voxels_h5", "the voxel output is the mesh's grid; set mesh: true");
   } else {
     const auto s = root.section("slicing");
     p.slicing.slices = static_cast<int>(s.integer("slices", 50, 1, 100000));

@@ -22,7 +22,8 @@
 //     frame_scale: 1                # photograph px per calibrated px (crops that were resized)
 //     frame_turn: same              # same | reversed: the photographs see the turntable turn the
 //                                   # other way from the calibration; with `auto` origin also `auto`
-//   carving: {resolution: 256, subvoxel_samples: 0, search_resolution: 48, mesh: true, mesh_resolution: 128}
+//   carving: {resolution: 256, subvoxel_samples: 0, search_resolution: 48, mesh: true, mesh_resolution: 128,
+//             voxels_h5: false}      # voxels.h5: occupancy fractions on the mesh grid (io/voxel_output.hpp)
 //   slicing: {slices: 50, px_per_mm: 40, scale_correction: true}   # slicing: images are [top, side]
 #include <filesystem>
 #include <optional>
@@ -62,6 +63,9 @@ struct SeedProfile {
   std::string source;          // the profile file, for messages
   std::string effective_yaml;  // as used, defaults included
 };
+
+// The `segmentation:` section of a profile.
+SegmentationOptions read_segmentation(const config::Section& segmentation);
 
 // The `camera:` section of a profile (or of a render scene).
 CameraProfile read_camera_profile(const config::Section& camera);

@@ -31,3 +31,13 @@ if row["method"] == "carving":
     ply = (folder / "surface.ply").read_bytes()
     assert ply.startswith(b"ply\nformat binary_little_endian 1.0\n"), ply[:60]
     assert float(row["surface_mm2"]) > 0
+voxels = folder / "voxels.h5"
+if voxels.exists():  # carving.voxels_h5: the occupancy fractions hold the same volume (coarser grid: 0.5%)
+    import h5py
+    with h5py.File(voxels, "r") as f:
+        occupancy = f["occupancy"]
+        nz, ny, nx = (int(x) for x in occupancy.attrs["shape_zyx"].split())
+        assert occupancy.shape == (nz * ny, nx), occupancy.shape
+        voxel_volume = float(occupancy.attrs["voxel_mm"]) ** 3 * occupancy[:].sum()
+    print(f"voxels.h5: {voxel_volume:.4f} mm^3")
+    assert abs(voxel_volume / volume - 1) <= 0.005, voxel_volume
