@@ -26,6 +26,7 @@
 #include "core/mpi/comm.hpp"
 #include "core/mpi/environment.hpp"
 #include "core/run/guarded_main.hpp"
+#include "core/run/shard.hpp"
 #include "core/run/run_record.hpp"
 
 namespace {
@@ -110,17 +111,8 @@ Arguments parse(int argc, char** argv) {
     } else if (s == "--retry-failed") {
       a.retry_failed = true;
     } else if (s == "--shard") {
-      const std::string v = value();
-      const auto slash = v.find('/');
-      try {
-        if (slash == std::string::npos) throw std::invalid_argument(v);
-        a.shard_index = std::stoi(v.substr(0, slash));
-        a.shard_count = std::stoi(v.substr(slash + 1));
-      } catch (const std::exception&) {
-        a.shard_count = 0;
-      }
-      if (a.shard_count < 1 || a.shard_index < 0 || a.shard_index >= a.shard_count)
-        throw suite::InputError(fmt::format("--shard '{}': write K/N with 0 <= K < N, e.g. 3/16", v));
+      const suite::Shard shard = suite::parse_shard(value());
+      a.shard_index = shard.index, a.shard_count = shard.count;
     } else if (suite::config::looks_like_override(s)) {
       a.overrides.push_back(s);
     } else if (s.rfind("--", 0) != 0) {

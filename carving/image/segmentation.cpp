@@ -57,21 +57,6 @@ void morphology(cv::Mat& binary, int operation, int size) {
   cv::morphologyEx(binary, binary, operation, kernel);
 }
 
-void write_image(const std::filesystem::path& path, const cv::Mat& image) {
-  bool ok = false;
-  std::string detail;
-  try {
-    ok = cv::imwrite(path.string(), image);
-  } catch (const cv::Exception& e) {
-    detail = e.err;
-  }
-  if (!ok)
-    throw InputError(
-        fmt::format("cannot write overlay '{}': check that the folder exists and is writable and that the "
-                    "extension is one OpenCV writes (.png){}{}",
-                    path.string(), detail.empty() ? "" : "; OpenCV: ", detail));
-}
-
 }  // namespace
 
 Segmentation segment(const cv::Mat& input, const SegmentationOptions& options) {
@@ -143,25 +128,6 @@ Segmentation segment(const cv::Mat& input, const SegmentationOptions& options) {
   return out;
 }
 
-cv::Mat read_image(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(fmt::format("cannot read image '{}': no such file", path.string()));
-  cv::Mat image;
-  std::string detail;
-  try {
-    image = cv::imread(path.string(), cv::IMREAD_COLOR);
-  } catch (const cv::Exception& e) {
-    detail = e.err;
-  }
-  if (image.empty())
-    throw InputError(
-        fmt::format("cannot read image '{}': empty, corrupt or not a format OpenCV decodes (PNG, JPEG, "
-                    "TIFF, BMP){}{}",
-                    path.string(), detail.empty() ? "" : "; OpenCV: ", detail));
-  return image;
-}
-
 Segmentation segment_file(const std::filesystem::path& path, const SegmentationOptions& options) {
   return segment(read_image(path), options);
 }
@@ -186,21 +152,7 @@ void write_overlay(const std::filesystem::path& path, const cv::Mat& bgr, const 
   constexpr int shift = 4;  // sub-pixel line ends: coordinates in 1/16 px
   const auto fixed = [](const cv::Point2d& p) { return cv::Point(cvRound(p.x * 16), cvRound(p.y * 16)); };
   for (const auto& line : lines) cv::line(canvas, fixed(line.from), fixed(line.to), red, 1, cv::LINE_8, shift);
-  write_image(path, canvas);
-}
-
-Mask mask_from_image(const cv::Mat& gray) {
-  if (gray.empty() || gray.type() != CV_8UC1)
-    throw InputError(
-        fmt::format("mask_from_image: the image is {} x {} of OpenCV type {}; give a non-empty 8-bit "
-                    "single-channel image",
-                    gray.cols, gray.rows, gray.type()));
-  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(gray.cols) * gray.rows);
-  for (int y = 0; y < gray.rows; ++y) {
-    const auto* row = gray.ptr<std::uint8_t>(y);
-    for (int x = 0; x < gray.cols; ++x) pixels[static_cast<std::size_t>(y) * gray.cols + x] = row[x] != 0;
-  }
-  return Mask(gray.cols, gray.rows, std::move(pixels));
+  write_png(path, canvas);
 }
 
 double intersection_over_union(const Mask& a, const Mask& b) {

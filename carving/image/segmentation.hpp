@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "carving/image/image_io.hpp"
 #include "carving/image/mask.hpp"
 
 namespace suite::carving {
@@ -51,9 +52,6 @@ struct Segmentation {
 // for an empty image or invalid options (each message names the option and its valid range).
 Segmentation segment(const cv::Mat& bgr, const SegmentationOptions& options = {});
 
-// Reads an image with cv::imread; InputError naming the file when it is missing, unreadable or empty.
-cv::Mat read_image(const std::filesystem::path& path);
-
 // read_image + segment; errors name the file.
 Segmentation segment_file(const std::filesystem::path& path, const SegmentationOptions& options = {});
 
@@ -68,10 +66,6 @@ struct OverlayLine {
 // the path when it cannot be written.
 void write_overlay(const std::filesystem::path& path, const cv::Mat& bgr, const Segmentation& segmentation,
                    const std::vector<OverlayLine>& lines = {});
-
-// A Mask from an 8-bit single-channel image, non-zero = seed (e.g. a mask PNG read with
-// cv::IMREAD_GRAYSCALE). The reverse is mask_image() in carving/render/renderer.hpp.
-Mask mask_from_image(const cv::Mat& gray);
 
 // Intersection over union of two masks of the same size (1 when both are empty).
 double intersection_over_union(const Mask& a, const Mask& b);

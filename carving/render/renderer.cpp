@@ -197,33 +197,4 @@ RenderedView render(const Shape& shape, const View& view, const RenderOptions& o
   return out;
 }
 
-cv::Mat mask_image(const Mask& mask) {
-  cv::Mat image(mask.height(), mask.width(), CV_8UC1);
-  for (int y = 0; y < mask.height(); ++y) {
-    auto* row = image.ptr<std::uint8_t>(y);
-    for (int x = 0; x < mask.width(); ++x) row[x] = mask.at(x, y) ? 255 : 0;
-  }
-  return image;
-}
-
-void write_png(const std::filesystem::path& path, const cv::Mat& image) {
-  if (image.empty()) throw InputError(fmt::format("cannot write '{}': the image is empty", path.string()));
-  bool ok = false;
-  std::string detail;
-  try {
-    ok = cv::imwrite(path.string(), image);
-  } catch (const cv::Exception& e) {
-    detail = e.err;
-  }
-  if (!ok)
-    throw InputError(
-        fmt::format("cannot write image '{}': check that the folder exists and is writable and that the "
-                    "extension is one OpenCV writes (.png){}{}",
-                    path.string(), detail.empty() ? "" : "; OpenCV: ", detail));
-}
-
-void write_mask_png(const std::filesystem::path& path, const Mask& mask) {
-  write_png(path, mask_image(mask));
-}
-
 }  // namespace suite::carving

@@ -23,6 +23,7 @@
 #include <opencv2/core.hpp>
 
 #include "carving/camera/camera.hpp"
+#include "carving/image/image_io.hpp"
 #include "carving/image/mask.hpp"
 #include "carving/render/shapes.hpp"
 
@@ -50,13 +51,5 @@ struct RenderedView {
 // Renders `shape` as seen by `view`. InputError for a view without pixels, a projection that is
 // neither pinhole nor parallel, or options out of range (each message names the option).
 RenderedView render(const Shape& shape, const View& view, const RenderOptions& options = {});
-
-// A mask as an 8-bit image, 255 = seed.
-cv::Mat mask_image(const Mask& mask);
-
-// Write an image (any type cv::imwrite accepts; PNG for exact pixels) or a mask (0 / 255) to `path`.
-// InputError naming the path when OpenCV cannot write it.
-void write_png(const std::filesystem::path& path, const cv::Mat& image);
-void write_mask_png(const std::filesystem::path& path, const Mask& mask);
 
 }  // namespace suite::carving

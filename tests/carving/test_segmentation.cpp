@@ -15,6 +15,7 @@
 #include "carving/render/renderer.hpp"
 #include "carving/render/shapes.hpp"
 #include "core/errors.hpp"
+#include "tests/support/test_dirs.hpp"
 
 namespace suite::carving {
 namespace {
@@ -29,16 +30,6 @@ std::filesystem::path scratch_dir() {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
-}
-
-template <class F>
-std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 // A parallel view of `scale` px/mm looking along +z: world x -> u, world y -> v.
@@ -180,16 +171,16 @@ TEST(Segmentation, FilesOverlaysAndErrorsNameTheirPaths) {
 
   const auto garbage = dir / "not_an_image.png";
   std::ofstream(garbage) << "this is not a PNG";
-  EXPECT_NE(input_error_of([&] { read_image(garbage); }).find(garbage.string()), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { read_image(garbage); }).find(garbage.string()), std::string::npos);
   const auto missing = dir / "missing.png";
-  EXPECT_NE(input_error_of([&] { segment_file(missing); }).find(missing.string()), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { segment_file(missing); }).find(missing.string()), std::string::npos);
   const auto empty = dir / "empty.png";
   std::ofstream{empty};
-  EXPECT_NE(input_error_of([&] { read_image(empty); }).find(empty.string()), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { read_image(empty); }).find(empty.string()), std::string::npos);
   const auto unwritable = dir / "no_such_folder" / "overlay.png";
-  EXPECT_NE(input_error_of([&] { write_overlay(unwritable, view.image, s); }).find(unwritable.string()),
+  EXPECT_NE(testing::input_error_of([&] { write_overlay(unwritable, view.image, s); }).find(unwritable.string()),
             std::string::npos);
-  EXPECT_NE(input_error_of([&] { segment(cv::Mat()); }).find("empty"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { segment(cv::Mat()); }).find("empty"), std::string::npos);
 }
 
 TEST(Segmentation, BadOptionsNameTheOption) {
@@ -197,17 +188,17 @@ TEST(Segmentation, BadOptionsNameTheOption) {
   SegmentationOptions o;
   o.hsv_low[1] = 200;
   o.hsv_high[1] = 100;
-  EXPECT_NE(input_error_of([&] { segment(image, o); }).find("hsv_low S = 200"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { segment(image, o); }).find("hsv_low S = 200"), std::string::npos);
   o = {};
   o.hsv_high[0] = 181;
-  EXPECT_NE(input_error_of([&] { segment(image, o); }).find("hsv_high H = 181"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { segment(image, o); }).find("hsv_high H = 181"), std::string::npos);
   o = {};
   o.min_area = 100;
   o.max_area = 50;
-  EXPECT_NE(input_error_of([&] { segment(image, o); }).find("min_area = 100"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { segment(image, o); }).find("min_area = 100"), std::string::npos);
   o = {};
   o.open_kernel_px = -1;
-  EXPECT_NE(input_error_of([&] { segment(image, o); }).find("open_kernel_px = -1"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { segment(image, o); }).find("open_kernel_px = -1"), std::string::npos);
 }
 
 }  // namespace
