@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "core/errors.hpp"
@@ -14,8 +15,16 @@
 namespace suite::studies {
 
 BreachModel::BreachModel(std::filesystem::path scene, std::vector<std::pair<std::string, Template>> set,
-                         std::vector<std::string> responses)
-    : scene_(std::move(scene)), set_(std::move(set)), responses_(std::move(responses)) {}
+                         std::vector<std::string> responses, bool read_once)
+    : scene_(std::move(scene)), set_(std::move(set)), responses_(std::move(responses)) {
+  if (!read_once) return;
+  try {
+    variants_ = std::make_shared<const breach::SceneVariants>(config::Config::from_file(scene_));
+  } catch (const InputError&) {
+    // The scene needs the study's values to read (a key only `set` gives, or one it corrects):
+    // each evaluation reads it with them, and reports the error if it still does not read.
+  }
+}
 
 std::unique_ptr<Model> BreachModel::read(const config::Section& s, const std::vector<std::string>& variables) {
   const auto scene = s.file("scene");
@@ -43,17 +52,22 @@ std::unique_ptr<Model> BreachModel::read(const config::Section& s, const std::ve
                                         "peak_breach_outflow, breach_initiation_time, final_bottom_width, "
                                         "final_depth, eroded_volume, ... (docs/breach.md)",
                                         r));
-  return std::make_unique<BreachModel>(scene, std::move(set), std::move(responses));
+  const bool once = s.choice("read_scene", {"once", "every_evaluation"}, "once") == "once";
+  return std::make_unique<BreachModel>(scene, std::move(set), std::move(responses), once);
 }
 
 Outcome BreachModel::evaluate(long, const std::map<std::string, double>& values) const {
   Outcome out;
   try {
-    std::vector<std::string> overrides;
-    for (const auto& [key, t] : set_) overrides.push_back(key + "=" + t.render(values));
-    auto cfg = config::Config::from_file(scene_, overrides);
-    const auto scene = breach::Scene::read_complete(cfg);
-    const auto summary = breach::make_summary(breach::simulate(scene)).json();
+    std::vector<std::pair<std::string, std::string>> settings;
+    for (const auto& [key, t] : set_) settings.emplace_back(key, t.render(values));
+    std::optional<breach::Scene> scene = variants_ ? variants_->with(settings) : std::nullopt;
+    if (!scene) {
+      std::vector<std::string> overrides;
+      for (const auto& [key, value] : settings) overrides.push_back(key + "=" + value);
+      scene = breach::Scene::read_complete(config::Config::from_file(scene_, overrides));
+    }
+    const auto summary = breach::make_summary(breach::simulate(*scene)).json();
     for (const auto& r : responses_) {
       const auto& v = summary.at(r);
       if (v.is_boolean()) {

@@ -141,6 +141,20 @@ Hydrograph Hydrograph::read(const config::Section& s) {
   return triangular(peak, base, tp, duration);
 }
 
+Hydrograph Hydrograph::with_peak(double peak) const {
+  switch (kind_) {
+    case Kind::constant:
+      return constant(peak);
+    case Kind::sine:
+      return sine(peak, period_);
+    case Kind::triangular:
+      return triangular(peak, values_.front(), times_[1], times_[2]);
+    case Kind::table:
+      break;
+  }
+  throw InputError("an inflow table has no single peak to change; change its rows");
+}
+
 double Hydrograph::operator()(double t) const {
   switch (kind_) {
     case Kind::constant:

@@ -37,6 +37,12 @@ class Hydrograph {
   static Hydrograph read_file(const std::filesystem::path& path, const std::string& time_unit,
                               const std::string& discharge_unit);
 
+  // The same storm with another peak (m^3/s): a triangle keeps its base and times, a sine its
+  // period, a constant inflow becomes `peak`. InputError for a table.
+  Hydrograph with_peak(double peak) const;
+  // m^3/s: the discharge a triangle starts and ends at (0 for the other kinds).
+  double base() const { return kind_ == Kind::triangular ? values_.front() : 0.0; }
+
   double operator()(double t) const;  // m^3/s
   // Exact volume between t0 and t1 (m^3): piecewise-linear and sine forms integrate in closed
   // form, so the reservoir mass balance can be checked to round-off.

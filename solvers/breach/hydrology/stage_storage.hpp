@@ -30,6 +30,10 @@ class StageStorage {
   double area(double level) const;    // m^2
   double level(double volume) const;  // m, the inverse of volume()
   double bottom() const;              // m, level of zero storage
+  // The power law's parameters (meaningless for a table).
+  bool is_power_law() const { return !is_table_; }
+  double alpha() const { return alpha_; }
+  double exponent() const { return exponent_; }
 
  private:
   bool is_table_ = false;

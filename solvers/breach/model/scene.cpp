@@ -8,16 +8,10 @@ namespace suite::breach {
 
 namespace {
 
-Reservoir read_reservoir(const config::Section& s, const Embankment& dam) {
+Reservoir read_reservoir(const config::Section& s) {
   Reservoir r;
   r.storage = StageStorage::read(s.section("storage"));
   r.initial_level = s.quantity("initial_level", "m");
-  if (r.initial_level < r.storage.bottom())
-    s.reject("initial_level", fmt::format("is below the bottom of the storage relation ({} m)", r.storage.bottom()));
-  if (r.initial_level > dam.crest() + dam.height)
-    s.reject("initial_level", fmt::format("is more than a dam height above the crest ({} m); check the datum "
-                                          "(levels and dam.foundation use the same one)",
-                                          dam.crest()));
   if (auto sp = s.optional_section("spillway")) r.spillway = RatingCurve::read(*sp);
   return r;
 }
@@ -26,13 +20,11 @@ BreachSettings read_breach(const config::Section& b, const config::Section& h, c
                            const Soil& soil) {
   using config::Range;
   BreachSettings out;
-  out.initial_width = b.quantity("initial_width", "m", std::min(dam.height, dam.crest_length), Range::positive());
-  if (out.initial_width > dam.crest_length)
-    b.reject("initial_width", fmt::format("is wider than the crest ({} m)", dam.crest_length));
+  out.initial_width = b.quantity("initial_width", "m", BreachSettings::default_initial_width(dam), Range::positive());
   out.side_slope = b.number("side_slope", 1.0, Range::at_least(0));
   out.face_roughness = b.number("face_roughness", soil.grain_roughness, Range::at_least(soil.grain_roughness));
-  out.formation_depth = h.quantity("formation_depth", "m", 0.1 * dam.height, Range::positive());
-  if (out.formation_depth >= dam.height) h.reject("formation_depth", "must be less than the dam height");
+  out.formation_depth =
+      h.quantity("formation_depth", "m", BreachSettings::default_formation_depth(dam), Range::positive());
   out.headcut.jet_friction = h.number("jet_friction", out.headcut.jet_friction, Range::positive());
   out.headcut.jet_diffusion = h.number("jet_diffusion", out.headcut.jet_diffusion, Range::positive());
   out.headcut.critical_height_factor =
@@ -40,21 +32,14 @@ BreachSettings read_breach(const config::Section& b, const config::Section& h, c
   return out;
 }
 
-InternalErosion read_internal_erosion(const config::Section& s, const Embankment& dam) {
+InternalErosion read_internal_erosion(const config::Section& s) {
   using config::Range;
   InternalErosion ie;
   ie.enabled = true;
   ie.elevation = s.quantity("elevation", "m");
-  if (ie.elevation < dam.foundation || ie.elevation >= dam.crest())
-    s.reject("elevation",
-             fmt::format("must be between the foundation ({} m) and the crest ({} m)", dam.foundation, dam.crest()));
   ie.initial_diameter = s.quantity("initial_diameter", "m", ie.initial_diameter, Range::positive());
   ie.entrance_loss = s.number("entrance_loss", ie.entrance_loss, Range::at_least(0));
   ie.collapse_fraction = s.number("collapse_fraction", ie.collapse_fraction, Range::between(0.05, 1.0));
-  if (ie.initial_diameter >= ie.geometric_collapse_diameter(dam.crest()))
-    s.reject("initial_diameter", fmt::format("is already at the collapse diameter ({:.4g} m = collapse_fraction x "
-                                             "height of the crest above the pipe)",
-                                             ie.geometric_collapse_diameter(dam.crest())));
   return ie;
 }
 
@@ -83,15 +68,42 @@ Scene Scene::read(const config::Section& root) {
   sc.gravity = root.quantity("gravity", "m/s^2", 9.81, Range::positive());
   sc.dam = Embankment::read(root.section("dam"));
   sc.soil = Soil::read(root.section("soil"));
-  sc.reservoir = read_reservoir(root.section("reservoir"), sc.dam);
+  sc.reservoir = read_reservoir(root.section("reservoir"));
   sc.inflow = Hydrograph::read(root.section("inflow"));
   sc.breach = read_breach(root.section_or_empty("breach"), root.section_or_empty("headcut"), sc.dam, sc.soil);
-  if (auto ie = root.optional_section("internal_erosion")) sc.internal_erosion = read_internal_erosion(*ie, sc.dam);
+  if (auto ie = root.optional_section("internal_erosion")) sc.internal_erosion = read_internal_erosion(*ie);
   sc.time = read_time(root.section("time"));
   const double span = sc.time.end - sc.time.start;
   sc.output_interval =
       root.section_or_empty("output").quantity("interval", "s", span / 1000.0, Range::at_least(span / 1e6));
+  if (const auto p = sc.cross_section_problem()) root.section(p->section).reject(p->key, p->text);
   return sc;
+}
+
+std::optional<Scene::Problem> Scene::cross_section_problem() const {
+  const double crest = dam.crest();
+  if (breach.initial_width > dam.crest_length)
+    return Problem{"breach", "initial_width", fmt::format("is wider than the crest ({} m)", dam.crest_length)};
+  if (breach.formation_depth >= dam.height)
+    return Problem{"headcut", "formation_depth", "must be less than the dam height"};
+  if (reservoir.initial_level < reservoir.storage.bottom())
+    return Problem{"reservoir", "initial_level",
+                   fmt::format("is below the bottom of the storage relation ({} m)", reservoir.storage.bottom())};
+  if (reservoir.initial_level > crest + dam.height)
+    return Problem{"reservoir", "initial_level",
+                   fmt::format("is more than a dam height above the crest ({} m); check the datum (levels and "
+                               "dam.foundation use the same one)",
+                               crest)};
+  if (!internal_erosion.enabled) return std::nullopt;
+  if (internal_erosion.elevation < dam.foundation || internal_erosion.elevation >= crest)
+    return Problem{"internal_erosion", "elevation",
+                   fmt::format("must be between the foundation ({} m) and the crest ({} m)", dam.foundation, crest)};
+  if (internal_erosion.initial_diameter >= internal_erosion.geometric_collapse_diameter(crest))
+    return Problem{"internal_erosion", "initial_diameter",
+                   fmt::format("is already at the collapse diameter ({:.4g} m = collapse_fraction x height of the "
+                               "crest above the pipe)",
+                               internal_erosion.geometric_collapse_diameter(crest))};
+  return std::nullopt;
 }
 
 Scene Scene::read_complete(const config::Config& cfg) {

@@ -16,6 +16,10 @@
 //
 // The sections' own headers (embankment.hpp, soil.hpp, stage_storage.hpp, rating_curve.hpp,
 // hydrograph.hpp, headcut.hpp) describe their keys and the sources of their coefficients.
+#include <algorithm>
+#include <optional>
+#include <string>
+
 #include "core/config/config.hpp"
 #include "solvers/breach/erosion/headcut.hpp"
 #include "solvers/breach/geometry/embankment.hpp"
@@ -46,6 +50,10 @@ struct BreachSettings {
   // Not published; default 10% of the dam height (an assumption, an input).
   double formation_depth = 0.0;
   HeadcutCoefficients headcut;
+
+  // The defaults that follow the dam: a scene that gives no width or formation depth gets these.
+  static double default_initial_width(const Embankment& dam) { return std::min(dam.height, dam.crest_length); }
+  static double default_formation_depth(const Embankment& dam) { return 0.1 * dam.height; }
 };
 
 // Breach initiation by internal erosion (WinDAM C's second mode; the dissertation's synthetic
@@ -92,6 +100,18 @@ struct Scene {
   // Reads the scene of a run that writes no charts (library calls, the Dakota driver): accepts
   // the executable's own `output.plot` key, then checks that no key is left unknown.
   static Scene read_complete(const config::Config& cfg);
+
+  // A check between keys of different sections that the scene fails: a breach wider than the
+  // crest, a formation depth as deep as the dam, a pool below its storage's bottom or more than
+  // a dam height above the crest, a pipe outside the embankment or already at its collapse
+  // diameter.
+  struct Problem {
+    std::string section, key, text;  // e.g. "breach", "initial_width", "is wider than the crest (150 m)"
+  };
+  // The first such problem, or none. Scene::read makes these checks after reading every
+  // section, and SceneVariants (scene_variants.hpp) again after changing keys, so a check
+  // between sections belongs here.
+  std::optional<Problem> cross_section_problem() const;
 };
 
 }  // namespace suite::breach
