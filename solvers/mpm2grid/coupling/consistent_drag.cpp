@@ -1,0 +1,419 @@
+#include "solvers/mpm2grid/coupling/consistent_drag.hpp"
+
+#include <fmt/format.h>
+#include <petscksp.h>
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <stdexcept>
+
+#include "core/errors.hpp"
+#include "core/petsc/petsc_check.hpp"
+
+namespace suite::mpm2grid {
+
+// The PETSc objects. Mat and Vec are PETSc's here (::), not mpm2grid's Eigen templates.
+template <int Dim>
+struct ConsistentDrag<Dim>::Petsc {
+  KSP ksp = nullptr;
+  ::Mat matrix = nullptr;
+  ::Vec rhs = nullptr, solution = nullptr;
+  PetscInt local_rows = -1;  // this rank's rows in the last solve
+
+  Petsc() = default;
+  Petsc(const Petsc&) = delete;
+  Petsc& operator=(const Petsc&) = delete;
+  ~Petsc() {
+    // Return codes ignored: a destructor cannot throw, and these only release memory.
+    MatDestroy(&matrix);
+    VecDestroy(&rhs);
+    VecDestroy(&solution);
+    KSPDestroy(&ksp);
+  }
+};
+
+namespace {
+
+constexpr int ipow(int base, int exponent) {
+  int v = 1;
+  for (int i = 0; i < exponent; ++i) v *= base;
+  return v;
+}
+
+// The node-local update without drag: v = b / m, or 0 without mass.
+template <int Dim>
+Vec<Dim> node_local_velocity(const NodeFields<Dim>& f, std::size_t slot, double dt) {
+  const double m = f.mass[slot];
+  return m > 0 ? Vec<Dim>((f.momentum[slot] + dt * f.force[slot]) / m) : Vec<Dim>::Zero();
+}
+
+// The node slots within 3 spacings of a node along every axis (its 7^Dim "window", x fastest):
+// the nodes a drag entry can couple it to, since both must lie in one particle's 4-wide stencil.
+// A window reaches at most one block further along each axis, so the 3^Dim neighbour blocks of
+// every block are looked up once and the window is then walked with integer arithmetic.
+template <int Dim>
+class Windows {
+ public:
+  static constexpr int kSize = ipow(7, Dim);
+
+  explicit Windows(const BlockGrid<Dim>& grid) : first_(grid.blocks()) {
+    for (std::size_t b = 0; b < grid.blocks(); ++b)
+      for (int n = 0; n < kNeighbours; ++n) {
+        Index<Dim> corner;
+        for (int d = 0, r = n; d < Dim; ++d, r /= 3) corner[d] = (grid.block_coord(b)[d] + r % 3 - 1) * kSide;
+        const int block = grid.block_of_node(corner);
+        first_[b][static_cast<std::size_t>(n)] = block < 0 ? -1 : static_cast<long>(block) * kNodes;
+      }
+  }
+
+  // out[n]: the slot of the window's node n (offset (n % 7 - 3, n / 7 % 7 - 3, ...) from the
+  // node of `slot`), or -1 where the grid has no node.
+  void slots(long slot, std::array<long, kSize>& out) const {
+    const auto& first = first_[static_cast<std::size_t>(slot / kNodes)];
+    Index<Dim> local;
+    for (int d = 0, r = static_cast<int>(slot % kNodes); d < Dim; ++d, r /= kSide) local[d] = r % kSide;
+    for (int n = 0; n < kSize; ++n) {
+      int neighbour = 0, at = 0;
+      for (int d = 0, r = n, stride3 = 1, stride4 = 1; d < Dim; ++d, r /= 7, stride3 *= 3, stride4 *= kSide) {
+        const int c = local[d] + r % 7 - 3;  // -3 .. 6
+        const int shift = c < 0 ? -1 : (c >= kSide ? 1 : 0);
+        neighbour += (shift + 1) * stride3;
+        at += (c - shift * kSide) * stride4;
+      }
+      const long block_first = first[static_cast<std::size_t>(neighbour)];
+      out[static_cast<std::size_t>(n)] = block_first < 0 ? -1 : block_first + at;
+    }
+  }
+
+ private:
+  static constexpr int kSide = BlockGrid<Dim>::kSide, kNodes = BlockGrid<Dim>::kNodes;
+  static constexpr int kNeighbours = ipow(3, Dim);
+  std::vector<std::array<long, kNeighbours>> first_;  // first slot of each neighbour block, or -1
+};
+
+// Upper bounds of the nonzero 2 x 2 blocks per owned node (block row), split as PETSc's
+// preallocation wants them: column nodes this rank owns (d_nnz) and column nodes other ranks own
+// (o_nnz): the coupled nodes in the node's window (the node itself included, for the mass).
+// Window nodes outside this rank's grid may be coupled nodes of another rank when there are
+// several ranks; they count towards o_nnz, at most `other_nodes` (the other ranks' nodes).
+template <int Dim>
+void count_nonzeros(const Windows<Dim>& windows, const NodeNumbering& numbering, const std::vector<long>& owned_slots,
+                    bool several_ranks, long other_nodes, std::vector<PetscInt>& d_nnz, std::vector<PetscInt>& o_nnz) {
+  d_nnz.assign(owned_slots.size(), 0);
+  o_nnz.assign(owned_slots.size(), 0);
+  std::array<long, Windows<Dim>::kSize> window;
+  for (std::size_t k = 0; k < owned_slots.size(); ++k) {
+    windows.slots(owned_slots[k], window);
+    long own = 0, other = 0;
+    for (const long slot : window) {
+      if (slot < 0) {
+        if (several_ranks) ++other;
+        continue;
+      }
+      const long g = numbering.global[static_cast<std::size_t>(slot)];
+      if (g < 0) continue;
+      if (numbering.owns(g))
+        ++own;
+      else
+        ++other;
+    }
+    d_nnz[k] = static_cast<PetscInt>(own);
+    o_nnz[k] = static_cast<PetscInt>(std::min(other, other_nodes));
+  }
+}
+
+// Adds c * (the stencil's weights of the 4^Dim nodes) to a node's window accumulator, where
+// `origin` is the stencil's corner node minus the window's corner node (0 .. 3 per axis).
+template <int Dim>
+void add_stencil(const Stencil<Dim>& s, const Index<Dim>& origin, double c, double* acc) {
+  if constexpr (Dim == 2) {
+    for (int j = 0; j < 4; ++j) {
+      const double cy = c * s.w[1][static_cast<std::size_t>(j)];
+      double* row = acc + ((origin[1] + j) * 7 + origin[0]);
+      for (int i = 0; i < 4; ++i) row[i] += cy * s.w[0][static_cast<std::size_t>(i)];
+    }
+  } else {
+    for (int k = 0; k < 4; ++k) {
+      const double cz = c * s.w[2][static_cast<std::size_t>(k)];
+      for (int j = 0; j < 4; ++j) {
+        const double cyz = cz * s.w[1][static_cast<std::size_t>(j)];
+        double* row = acc + (((origin[2] + k) * 7 + origin[1] + j) * 7 + origin[0]);
+        for (int i = 0; i < 4; ++i) row[i] += cyz * s.w[0][static_cast<std::size_t>(i)];
+      }
+    }
+  }
+}
+
+}  // namespace
+
+template <int Dim>
+NodeNumbering NodeNumbering::own_all(const mpi::Comm& comm, const NodeFields<Dim>& soil, const NodeFields<Dim>& water) {
+  NodeNumbering numbering;
+  numbering.global.assign(soil.mass.size(), -1);
+  for (std::size_t i = 0; i < soil.mass.size(); ++i)
+    if (drag_coupled(soil.mass[i], water.mass[i])) numbering.global[i] = numbering.owned++;
+  numbering.first = static_cast<long>(comm.exclusive_prefix_sum(static_cast<long long>(numbering.owned)));
+  for (auto& g : numbering.global)
+    if (g >= 0) g += numbering.first;
+  return numbering;
+}
+
+template <int Dim>
+ConsistentDrag<Dim>::ConsistentDrag(const mpi::Comm& comm, const std::string& prefix)
+    : comm_(comm), prefix_(prefix), petsc_(std::make_unique<Petsc>()) {
+  // Should a call below throw, petsc_ (a constructed member) still frees the KSP.
+  KSP& ksp = petsc_->ksp;
+  SUITE_PETSC_CHECK(KSPCreate(comm_.raw(), &ksp));
+  SUITE_PETSC_CHECK(KSPSetOptionsPrefix(ksp, prefix_.c_str()));
+  SUITE_PETSC_CHECK(KSPSetType(ksp, KSPCG));
+  PC pc;
+  SUITE_PETSC_CHECK(KSPGetPC(ksp, &pc));
+  SUITE_PETSC_CHECK(PCSetType(pc, PCJACOBI));
+  SUITE_PETSC_CHECK(KSPSetTolerances(ksp, 1e-12, 1e-50, PETSC_DEFAULT, PETSC_DEFAULT));
+  SUITE_PETSC_CHECK(KSPSetFromOptions(ksp));
+  // CG measures the preconditioned residual by default; the unpreconditioned one makes rtol a
+  // bound on ||b - A v|| / ||b||, hence on the momentum error. Only where the options kept CG
+  // and did not choose a norm themselves (other Krylov methods may not support this norm).
+  KSPType type = nullptr;
+  PetscBool cg = PETSC_FALSE, norm_set = PETSC_FALSE;
+  SUITE_PETSC_CHECK(KSPGetType(ksp, &type));
+  SUITE_PETSC_CHECK(PetscStrcmp(type, KSPCG, &cg));
+  SUITE_PETSC_CHECK(PetscOptionsHasName(nullptr, prefix_.c_str(), "-ksp_norm_type", &norm_set));
+  if (cg && !norm_set) SUITE_PETSC_CHECK(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
+}
+
+template <int Dim>
+ConsistentDrag<Dim>::~ConsistentDrag() = default;
+
+template <int Dim>
+void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil,
+                                   const std::vector<double>& soil_drag, const NodeFields<Dim>& soil_nodes,
+                                   const NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering,
+                                   const std::vector<long>& owned_slots, long total) {
+  constexpr int kNodes = BlockGrid<Dim>::kNodes, kWindow = Windows<Dim>::kSize;
+  ::Mat& matrix = petsc_->matrix;
+  const std::size_t nodes = grid.nodes();
+  const auto local_rows = static_cast<PetscInt>(2 * numbering.owned);
+  const auto global_rows = static_cast<PetscInt>(2 * total);
+  const Windows<Dim> windows(grid);
+  std::vector<PetscInt> d_nnz, o_nnz;
+  count_nonzeros(windows, numbering, owned_slots, comm_.size() > 1, total - numbering.owned, d_nnz, o_nnz);
+
+  SUITE_PETSC_CHECK(MatDestroy(&matrix));
+  // AIJ with block size 2 (a node's soil and water rows): -drag_pc_type pbjacobi then inverts
+  // each node's 2 x 2 block (the lumped drag coupling), and multigrid sees the layout.
+  SUITE_PETSC_CHECK(MatCreate(comm_.raw(), &matrix));
+  SUITE_PETSC_CHECK(MatSetSizes(matrix, local_rows, local_rows, global_rows, global_rows));
+  SUITE_PETSC_CHECK(MatSetType(matrix, MATAIJ));
+  SUITE_PETSC_CHECK(MatXAIJSetPreallocation(matrix, 2, d_nnz.empty() ? nullptr : d_nnz.data(),
+                                            o_nnz.empty() ? nullptr : o_nnz.data(), nullptr, nullptr));
+
+  // D row by row, so that PETSc receives each row once with its columns in increasing order
+  // (adding a particle's 4^Dim x 4^Dim block at a time makes PETSc search and shift its rows for
+  // every entry, about a hundred times slower). First, for every coupled node, the soil
+  // particles whose stencil holds it (compressed rows, counted and then filled).
+  std::vector<Stencil<Dim>> stencils;
+  stencils.reserve(soil.size());
+  std::vector<std::size_t> start(nodes + 1, 0);
+  std::array<long, kNodes> slots;
+  const double h = grid.spacing();
+  for (std::size_t p = 0; p < soil.size(); ++p) {
+    stencils.emplace_back(soil.x[p], h);
+    grid.stencil_slots(stencils.back(), slots);
+    for (const long slot : slots)
+      if (numbering.global[static_cast<std::size_t>(slot)] >= 0) ++start[static_cast<std::size_t>(slot) + 1];
+  }
+  for (std::size_t i = 0; i < nodes; ++i) start[i + 1] += start[i];
+  std::vector<std::size_t> touching(start[nodes]);
+  {
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (std::size_t p = 0; p < soil.size(); ++p) {
+      grid.stencil_slots(stencils[p], slots);
+      for (const long slot : slots)
+        if (numbering.global[static_cast<std::size_t>(slot)] >= 0) touching[next[static_cast<std::size_t>(slot)]++] = p;
+    }
+  }
+
+  // Then each coupled node i that this rank's particles touch or that this rank owns:
+  // D_ij = sum_p (c_E V)_p N_i(x_p) N_j(x_p) over its window j, the masses on the diagonal where
+  // i is owned, and the two rows 2 g_i (soil) and 2 g_i + 1 (water) with 2 x 2 blocks
+  // [[m_s + dt D, -dt D], [-dt D, m_w + dt D]] (masses on j = i only). Columns of nodes that are
+  // not coupled are dropped. Rows of other ranks' nodes go through PETSc's stash.
+  std::vector<char> owned(nodes, 0);
+  for (const long slot : owned_slots) owned[static_cast<std::size_t>(slot)] = 1;
+  std::array<double, kWindow> acc;
+  std::array<long, kWindow> window;
+  std::vector<std::pair<long, double>> columns;  // (global node j, D_ij)
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> values;
+  for (std::size_t i = 0; i < nodes; ++i) {
+    const long gi = numbering.global[i];
+    if (gi < 0 || (start[i] == start[i + 1] && !owned[i])) continue;
+    const Index<Dim> node = grid.node_of(static_cast<long>(i));
+    acc.fill(0.0);
+    for (std::size_t t = start[i]; t < start[i + 1]; ++t) {
+      const std::size_t p = touching[t];
+      const Stencil<Dim>& s = stencils[p];
+      Index<Dim> origin;
+      double wi = 1;
+      for (int d = 0; d < Dim; ++d) {
+        const int k = node[d] - s.base[d];  // 0 .. 3: i lies in the stencil
+        wi *= s.w[d][static_cast<std::size_t>(k)];
+        origin[d] = 3 - k;
+      }
+      add_stencil<Dim>(s, origin, soil_drag[p] * wi, acc.data());
+    }
+    windows.slots(static_cast<long>(i), window);
+    columns.clear();
+    for (int n = 0; n < kWindow; ++n) {
+      const long slot = window[static_cast<std::size_t>(n)];
+      const bool centre = n == (kWindow - 1) / 2;
+      if (slot < 0 || (acc[static_cast<std::size_t>(n)] == 0 && !centre)) continue;
+      const long gj = numbering.global[static_cast<std::size_t>(slot)];
+      if (gj >= 0) columns.emplace_back(gj, acc[static_cast<std::size_t>(n)]);
+    }
+    std::sort(columns.begin(), columns.end());
+    const std::size_t width = 2 * columns.size();
+    cols.resize(width);
+    values.resize(2 * width);
+    const double ms = owned[i] ? soil_nodes.mass[i] : 0.0, mw = owned[i] ? water_nodes.mass[i] : 0.0;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const long gj = columns[c].first;
+      const double v = dt * columns[c].second;
+      cols[2 * c] = static_cast<PetscInt>(2 * gj);
+      cols[2 * c + 1] = static_cast<PetscInt>(2 * gj + 1);
+      values[2 * c] = v + (gj == gi ? ms : 0.0);  // soil row
+      values[2 * c + 1] = -v;
+      values[width + 2 * c] = -v;  // water row
+      values[width + 2 * c + 1] = v + (gj == gi ? mw : 0.0);
+    }
+    const std::array<PetscInt, 2> rows{static_cast<PetscInt>(2 * gi), static_cast<PetscInt>(2 * gi + 1)};
+    SUITE_PETSC_CHECK(
+        MatSetValues(matrix, 2, rows.data(), static_cast<PetscInt>(width), cols.data(), values.data(), ADD_VALUES));
+  }
+  SUITE_PETSC_CHECK(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY));
+  SUITE_PETSC_CHECK(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY));
+  SUITE_PETSC_CHECK(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE));
+  SUITE_PETSC_CHECK(MatSetOption(matrix, MAT_SPD, PETSC_TRUE));
+}
+
+template <int Dim>
+SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particles<Dim>& soil,
+                                      const std::vector<double>& soil_drag, NodeFields<Dim>& soil_nodes,
+                                      NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering) {
+  const std::size_t nodes = grid.nodes();
+  // The owned slots in global order, and the checks. Every rank takes part in the same
+  // collectives whatever it finds, and a problem on any rank stops every rank here rather than
+  // leaving the others waiting inside PETSc.
+  const long owned = numbering.owned;
+  const auto lower = static_cast<long>(comm_.exclusive_prefix_sum(static_cast<long long>(owned)));
+  const auto total = static_cast<long>(comm_.sum(static_cast<long long>(owned)));
+  std::string problem;
+  const auto sized = [&](const NodeFields<Dim>& f) {
+    return f.mass.size() == nodes && f.momentum.size() == nodes && f.force.size() == nodes &&
+           f.velocity.size() == nodes;
+  };
+  if (!sized(soil_nodes) || !sized(water_nodes) || numbering.global.size() != nodes)
+    problem = fmt::format("node fields ({}, {} masses) and numbering ({}) must have one entry per grid node ({})",
+                          soil_nodes.mass.size(), water_nodes.mass.size(), numbering.global.size(), nodes);
+  else if (soil_drag.size() != soil.size())
+    problem = fmt::format("{} drag coefficients for {} soil particles", soil_drag.size(), soil.size());
+  else if (!(dt >= 0))
+    problem = fmt::format("dt = {} must be >= 0", dt);
+  else if (owned < 0 || numbering.first != lower)
+    problem = fmt::format("owned = {}, first = {}: first must be the sum of the lower ranks' owned counts ({})", owned,
+                          numbering.first, lower);
+  else if (2 * total > static_cast<long>(std::numeric_limits<PetscInt>::max()))
+    problem =
+        fmt::format("{} coupled nodes are more unknowns than PETSc's {}-bit indices hold", total, 8 * sizeof(PetscInt));
+  std::vector<long> owned_slots;
+  if (problem.empty()) {
+    owned_slots.assign(static_cast<std::size_t>(owned), -1);
+    for (std::size_t slot = 0; slot < nodes && problem.empty(); ++slot) {
+      const long g = numbering.global[slot];
+      if (g < -1 || g >= total) {
+        problem = fmt::format("slot {} has node number {}, outside -1 .. {}", slot, g, total - 1);
+      } else if (numbering.owns(g)) {
+        long& at = owned_slots[static_cast<std::size_t>(g - numbering.first)];
+        if (at >= 0) problem = fmt::format("owned node {} appears on slots {} and {}", g, at, slot);
+        at = static_cast<long>(slot);
+      }
+    }
+    for (std::size_t k = 0; k < owned_slots.size() && problem.empty(); ++k)
+      if (owned_slots[k] < 0) problem = fmt::format("owned node {} is on no slot", numbering.first + k);
+  }
+  if (comm_.any(!problem.empty()))
+    throw std::invalid_argument(fmt::format("ConsistentDrag ({}): {}", prefix_,
+                                            problem.empty() ? "inconsistent input on another rank" : problem));
+
+  // Nodes that are not coupled: the node-local update.
+  for (std::size_t slot = 0; slot < nodes; ++slot) {
+    if (numbering.global[slot] >= 0) continue;
+    soil_nodes.velocity[slot] = node_local_velocity(soil_nodes, slot, dt);
+    water_nodes.velocity[slot] = node_local_velocity(water_nodes, slot, dt);
+  }
+
+  assemble(grid, soil, soil_drag, soil_nodes, water_nodes, dt, numbering, owned_slots, total);
+  KSP ksp = petsc_->ksp;
+  ::Mat matrix = petsc_->matrix;
+  ::Vec& rhs = petsc_->rhs;
+  ::Vec& solution = petsc_->solution;
+  const auto local_rows = static_cast<PetscInt>(2 * numbering.owned);
+  if (comm_.any(local_rows != petsc_->local_rows)) {
+    // New sizes: the KSP's work vectors and the preconditioner are rebuilt for them.
+    SUITE_PETSC_CHECK(KSPReset(ksp));
+    SUITE_PETSC_CHECK(VecDestroy(&rhs));
+    SUITE_PETSC_CHECK(VecDestroy(&solution));
+    SUITE_PETSC_CHECK(MatCreateVecs(matrix, &solution, &rhs));
+    petsc_->local_rows = local_rows;
+  }
+  SUITE_PETSC_CHECK(KSPSetOperators(ksp, matrix, matrix));
+
+  SolveStats stats;
+  stats.unknowns = 2 * total;
+  for (int d = 0; d < Dim; ++d) {
+    PetscScalar* b = nullptr;
+    SUITE_PETSC_CHECK(VecGetArray(rhs, &b));
+    for (std::size_t k = 0; k < owned_slots.size(); ++k) {
+      const auto slot = static_cast<std::size_t>(owned_slots[k]);
+      b[2 * k] = soil_nodes.momentum[slot][d] + dt * soil_nodes.force[slot][d];
+      b[2 * k + 1] = water_nodes.momentum[slot][d] + dt * water_nodes.force[slot][d];
+    }
+    SUITE_PETSC_CHECK(VecRestoreArray(rhs, &b));
+    SUITE_PETSC_CHECK(KSPSolve(ksp, rhs, solution));
+    KSPConvergedReason reason;
+    PetscInt iterations = 0;
+    PetscReal residual = 0;
+    SUITE_PETSC_CHECK(KSPGetConvergedReason(ksp, &reason));
+    SUITE_PETSC_CHECK(KSPGetIterationNumber(ksp, &iterations));
+    SUITE_PETSC_CHECK(KSPGetResidualNorm(ksp, &residual));
+    if (reason < 0)
+      throw LibraryError(fmt::format(
+          "the consistent drag solve (options prefix '{}') diverged for velocity component {}: {} after {} "
+          "iterations, residual norm {:.3e}; the -{}ksp_* and -{}pc_* options choose the solver",
+          prefix_, d, KSPConvergedReasons[reason], iterations, static_cast<double>(residual), prefix_, prefix_));
+    if (iterations >= stats.iterations) {
+      stats.iterations = static_cast<int>(iterations);
+      stats.reason = static_cast<int>(reason);
+      stats.reason_name = KSPConvergedReasons[reason];
+    }
+    stats.residual_norm = std::max(stats.residual_norm, static_cast<double>(residual));
+    const PetscScalar* x = nullptr;
+    SUITE_PETSC_CHECK(VecGetArrayRead(solution, &x));
+    for (std::size_t k = 0; k < owned_slots.size(); ++k) {
+      const auto slot = static_cast<std::size_t>(owned_slots[k]);
+      soil_nodes.velocity[slot][d] = x[2 * k];
+      water_nodes.velocity[slot][d] = x[2 * k + 1];
+    }
+    SUITE_PETSC_CHECK(VecRestoreArrayRead(solution, &x));
+  }
+  return stats;
+}
+
+template class ConsistentDrag<2>;
+template class ConsistentDrag<3>;
+template NodeNumbering NodeNumbering::own_all<2>(const mpi::Comm&, const NodeFields<2>&, const NodeFields<2>&);
+template NodeNumbering NodeNumbering::own_all<3>(const mpi::Comm&, const NodeFields<3>&, const NodeFields<3>&);
+
+}  // namespace suite::mpm2grid

@@ -1,0 +1,126 @@
+#pragma once
+// The drag-coupled grid velocity update with the consistent drag matrix (spec/mpm2grid.md,
+// "Discretization", step 3), solved with PETSc. Per velocity component, on the nodes where both
+// species have mass (the "coupled" nodes),
+//   [ M_s + dt D   -dt D      ] [v_s]   [b_s]
+//   [ -dt D        M_w + dt D ] [v_w] = [b_w],     b_a = (m v)_a + dt f_a (f including gravity),
+// with M_a = diag(m_a,i) and D_ij = sum over soil particles p of (c_E V)_p N_i(x_p) N_j(x_p),
+// i and j both coupled (a particle's share on a node that is not coupled is dropped, as the
+// lumped form couples only where both species have mass). The matrix is
+// blockdiag(M_s, M_w) + dt D (x) [[1, -1], [-1, 1]], a positive diagonal plus a Kronecker product
+// of two positive semi-definite matrices: symmetric positive definite for every dt >= 0. Its
+// column sums of the drag terms cancel, so the exact solution conserves the total momentum
+// sum_i (m_s v_s + m_w v_w) = sum_i (b_s + b_w) for any dt (unconditionally stable: the drag only
+// takes kinetic energy out). The row sums of D are the lumped coefficients d_i of
+// coupling/drag_solve.hpp (where every node the particles touch is coupled); where the relative
+// velocity is uniform and m_s,i / d_i and m_w,i / d_i are the same on every node, both forms give
+// the same velocities. On the other nodes the update is node-local without drag: v = b / m, or 0
+// without mass.
+//
+// Unknowns: coupled node g (a global index over all ranks) has rows 2 g (soil) and 2 g + 1
+// (water), so a rank's rows are one contiguous range and a node's two unknowns stay together.
+// The matrix is preallocated from the stencil: a node couples only to nodes within 3 spacings
+// per axis (two overlapping 4-wide stencils).
+// One matrix serves the Dim components: it is assembled once per call and solved for Dim
+// right-hand sides. Each rank adds its own soil particles' drag terms; entries for rows another
+// rank owns travel through PETSc's assembly (no rank ever holds the global vector).
+//
+// PETSc: a ConsistentDrag must be created and destroyed inside a suite::PetscSession (it owns a
+// KSP, freed in the destructor, which must run before PetscFinalize). Defaults: KSPCG, PCJACOBI,
+// rtol 1e-12 on the unpreconditioned residual norm (so ||b - A v|| <= rtol ||b||, which bounds the
+// momentum error), atol 1e-50, zero initial guess; the options database overrides them through
+// the prefix, e.g. -drag_ksp_type, -drag_pc_type, -drag_ksp_rtol, -drag_ksp_max_it. The matrix
+// has block size 2, so -drag_pc_type pbjacobi inverts each node's 2 x 2 block; for dt far above
+// the drag relaxation time it needs fewer CG iterations than Jacobi (0.6 times as many in a 3D
+// test at dt = 1e3 tau).
+//
+// The header does not include PETSc: its global Vec and Mat would clash with mpm2grid's Eigen
+// Vec<Dim> and Mat<Dim> wherever both namespaces are open. The PETSc objects live in the .cpp.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/mpi/comm.hpp"
+#include "solvers/mpm2grid/grid/block_grid.hpp"
+#include "solvers/mpm2grid/particles/particles.hpp"
+
+namespace suite::mpm2grid {
+
+// Both species have mass on the node: the node's velocities are coupled by the drag.
+inline bool drag_coupled(double soil_mass, double water_mass) {
+  return soil_mass > 0 && water_mass > 0;
+}
+
+// The coupled nodes' global unknown numbers. global[slot] for every node slot of this rank's
+// grid: the node's index g among the coupled nodes of all ranks (rows 2 g and 2 g + 1), or -1
+// when the node is not coupled (it gets the node-local update). This rank owns g in
+// [first, first + owned); the owned ranges of the ranks follow each other in rank order
+// (first = the sum of the lower ranks' owned counts). A slot whose g another rank owns is a
+// ghost: this rank may add drag terms to its rows, and its velocity is left as it was (the
+// owner computes it). Every owned g must appear on exactly one slot of this rank's grid, and
+// ranks sharing a node must give it the same g.
+// The global count of unknowns (2 per coupled node) must fit PETSc's index type.
+struct NodeNumbering {
+  std::vector<long> global;  // per node slot: coupled-node index, or -1
+  long owned = 0;            // coupled nodes this rank owns
+  long first = 0;            // global index of this rank's first owned node
+
+  bool owns(long g) const { return g >= first && g < first + owned; }
+
+  // This rank owns every coupled node of its grid (today's case: one rank, or ranks whose grids
+  // share no node). Numbers the coupled slots in slot order after the lower ranks' nodes
+  // (MPI_Exscan of the owned counts). COLLECTIVE on comm.
+  template <int Dim>
+  static NodeNumbering own_all(const mpi::Comm& comm, const NodeFields<Dim>& soil, const NodeFields<Dim>& water);
+};
+
+// What one solve did, over the Dim components.
+struct SolveStats {
+  long unknowns = 0;         // rows of the global system (2 x coupled nodes)
+  int iterations = 0;        // most Krylov iterations of a component
+  double residual_norm = 0;  // largest final residual norm of a component (the KSP's norm type)
+  int reason = 0;            // PETSc's KSPConvergedReason of the component with the most iterations
+  std::string reason_name;   // its name, e.g. "CONVERGED_RTOL"
+};
+
+template <int Dim>
+class ConsistentDrag {
+ public:
+  // COLLECTIVE on comm. Creates the KSP with the defaults above, then reads the options database
+  // under `prefix`.
+  explicit ConsistentDrag(const mpi::Comm& comm, const std::string& prefix = "drag_");
+  ~ConsistentDrag();
+  ConsistentDrag(const ConsistentDrag&) = delete;
+  ConsistentDrag& operator=(const ConsistentDrag&) = delete;
+
+  // Sets soil_nodes.velocity and water_nodes.velocity: on this rank's owned coupled nodes the
+  // solution of the block system, on the slots numbered -1 the node-local update without drag,
+  // on ghost slots nothing. soil: this rank's soil particles, soil_drag their (c_E V)_p in kg/s
+  // (one per particle); their stencils must lie in `grid`. The node fields hold mass, momentum
+  // and force (gravity included) for every slot of `grid`; on owned nodes they must be complete
+  // (summed over ranks). COLLECTIVE on the comm. Throws LibraryError naming the prefix and
+  // PETSc's reason when the Krylov solve diverges, std::invalid_argument on inconsistent sizes.
+  SolveStats solve(const BlockGrid<Dim>& grid, const Particles<Dim>& soil, const std::vector<double>& soil_drag,
+                   NodeFields<Dim>& soil_nodes, NodeFields<Dim>& water_nodes, double dt,
+                   const NodeNumbering& numbering);
+
+  const std::string& prefix() const { return prefix_; }
+
+ private:
+  void assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil, const std::vector<double>& soil_drag,
+                const NodeFields<Dim>& soil_nodes, const NodeFields<Dim>& water_nodes, double dt,
+                const NodeNumbering& numbering, const std::vector<long>& owned_slots, long total);
+
+  struct Petsc;  // the KSP, the matrix (rebuilt every call: the pattern follows the particles)
+                 // and the vectors (kept while this rank's size stays the same)
+  mpi::Comm comm_;
+  std::string prefix_;
+  std::unique_ptr<Petsc> petsc_;
+};
+
+extern template class ConsistentDrag<2>;
+extern template class ConsistentDrag<3>;
+extern template NodeNumbering NodeNumbering::own_all<2>(const mpi::Comm&, const NodeFields<2>&, const NodeFields<2>&);
+extern template NodeNumbering NodeNumbering::own_all<3>(const mpi::Comm&, const NodeFields<3>&, const NodeFields<3>&);
+
+}  // namespace suite::mpm2grid

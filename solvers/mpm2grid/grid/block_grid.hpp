@@ -1,0 +1,146 @@
+#pragma once
+// The sparse background grid (spec/mpm2grid.md, "Model no more than the scene needs"): nodes
+// exist only in blocks of 4^Dim nodes that some particle's B-spline stencil touches, found from
+// the particles every step, never a dense box over the domain. Node (i, j[, k]) sits at
+// (i h, j h[, k h]); block b holds nodes 4 b .. 4 b + 3 per axis. Both species' grids use the
+// same blocks (co-located nodes), each with its own node fields (NodeFields).
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "solvers/mpm2grid/kernels/bspline.hpp"
+
+namespace suite::mpm2grid {
+
+template <int Dim>
+class BlockGrid {
+ public:
+  static constexpr int kSide = 4;                     // nodes per block side
+  static constexpr int kNodes = Dim == 2 ? 16 : 64;   // nodes per block (and per stencil)
+  static constexpr int kStencilBlocks = 1 << Dim;     // blocks a stencil can touch
+
+  explicit BlockGrid(double h) : h_(h) {}
+
+  double spacing() const { return h_; }
+  std::size_t blocks() const { return coords_.size(); }
+  std::size_t nodes() const { return coords_.size() * kNodes; }
+
+  // Drops every block (keeps the storage for the next step).
+  void clear() {
+    coords_.clear();
+    lookup_.clear();
+  }
+
+  // Activates the blocks the stencil's 4^Dim nodes lie in.
+  void touch(const Stencil<Dim>& s) {
+    for_stencil_blocks(s, [&](int, const Index<Dim>& b) {
+      const auto key = pack(b);
+      if (lookup_.find(key) == lookup_.end()) {
+        lookup_.emplace(key, static_cast<int>(coords_.size()));
+        coords_.push_back(b);
+      }
+    });
+  }
+
+  // Index of the block holding `node`, or -1 when that block is not active.
+  int block_of_node(const Index<Dim>& node) const {
+    Index<Dim> b;
+    for (int d = 0; d < Dim; ++d) b[d] = floor_div(node[d]);
+    const auto it = lookup_.find(pack(b));
+    return it == lookup_.end() ? -1 : it->second;
+  }
+
+  // Slot (0 .. nodes() - 1) of an active node, or -1.
+  long slot_of(const Index<Dim>& node) const {
+    const int b = block_of_node(node);
+    return b < 0 ? -1 : static_cast<long>(b) * kNodes + local(node);
+  }
+
+  // The slots of a stencil's 4^Dim nodes, in Stencil::for_each order (all blocks must be active).
+  void stencil_slots(const Stencil<Dim>& s, std::array<long, kNodes>& out) const {
+    std::array<long, kStencilBlocks> first{};
+    for_stencil_blocks(s, [&](int corner, const Index<Dim>& b) {
+      const auto it = lookup_.find(pack(b));
+      first[corner] = it == lookup_.end() ? -1 : static_cast<long>(it->second) * kNodes;
+    });
+    Index<Dim> lo;
+    for (int d = 0; d < Dim; ++d) lo[d] = floor_div(s.base[d]);
+    int n = 0;
+    s.for_each([&](const Index<Dim>&, const Index<Dim>& node) {
+      int corner = 0;
+      for (int d = 0; d < Dim; ++d) corner |= (floor_div(node[d]) - lo[d]) << d;
+      out[n++] = first[corner] + local(node);
+    });
+  }
+
+  // The node index and position of a slot.
+  Index<Dim> node_of(long slot) const {
+    const Index<Dim>& b = coords_[static_cast<std::size_t>(slot / kNodes)];
+    int r = static_cast<int>(slot % kNodes);
+    Index<Dim> node;
+    for (int d = 0; d < Dim; ++d) {
+      node[d] = b[d] * kSide + r % kSide;
+      r /= kSide;
+    }
+    return node;
+  }
+  Vec<Dim> position(long slot) const {
+    const Index<Dim> n = node_of(slot);
+    Vec<Dim> x;
+    for (int d = 0; d < Dim; ++d) x[d] = n[d] * h_;
+    return x;
+  }
+  const Index<Dim>& block_coord(std::size_t b) const { return coords_[b]; }
+
+ private:
+  static int floor_div(int i) { return i >= 0 ? i / kSide : -((-i + kSide - 1) / kSide); }
+  static int local(const Index<Dim>& node) {
+    int l = 0, stride = 1;
+    for (int d = 0; d < Dim; ++d) {
+      l += (node[d] - floor_div(node[d]) * kSide) * stride;
+      stride *= kSide;
+    }
+    return l;
+  }
+  // Block coordinates fit in 21 bits each (+- 10^6 blocks of 4 nodes per axis).
+  static std::uint64_t pack(const Index<Dim>& b) {
+    std::uint64_t key = 0;
+    for (int d = 0; d < Dim; ++d) key = (key << 21) | static_cast<std::uint64_t>((b[d] + (1 << 20)) & 0x1FFFFF);
+    return key;
+  }
+  // f(corner bits, block) for the 2^Dim blocks a stencil (base .. base + 3) may touch; when the
+  // stencil lies in one block along an axis, the corner's block repeats that one.
+  template <class F>
+  void for_stencil_blocks(const Stencil<Dim>& s, F&& f) const {
+    for (int corner = 0; corner < kStencilBlocks; ++corner) {
+      Index<Dim> b;
+      for (int d = 0; d < Dim; ++d) b[d] = floor_div(s.base[d] + ((corner >> d) & 1) * 3);
+      f(corner, b);
+    }
+  }
+
+  double h_;
+  std::vector<Index<Dim>> coords_;
+  std::unordered_map<std::uint64_t, int> lookup_;
+};
+
+// One species' grid values, one entry per node slot.
+template <int Dim>
+struct NodeFields {
+  std::vector<double> mass;          // kg (per metre of thickness in 2D)
+  std::vector<Vec<Dim>> momentum;    // kg m/s: sum_p w_ip m_p (v_p + C_p (x_i - x_p))
+  std::vector<Vec<Dim>> force;       // N: internal + gravity
+  std::vector<Vec<Dim>> velocity;    // m/s after the grid solve
+  std::vector<double> drag;          // kg/s: sum_p c_E,p V_p w_ip (soil only)
+
+  void reset(std::size_t nodes) {
+    mass.assign(nodes, 0.0);
+    momentum.assign(nodes, Vec<Dim>::Zero());
+    force.assign(nodes, Vec<Dim>::Zero());
+    velocity.assign(nodes, Vec<Dim>::Zero());
+    drag.assign(nodes, 0.0);
+  }
+};
+
+}  // namespace suite::mpm2grid

@@ -1,0 +1,291 @@
+#include "solvers/mpm2grid/io/run_mpm.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "core/checkpoint/checkpoint.hpp"
+#include "core/checkpoint/schedule.hpp"
+#include "core/io/csv_series.hpp"
+#include "core/io/output_dir.hpp"
+#include "core/io/xdmf.hpp"
+#include "core/log/progress.hpp"
+#include "core/mpi/collective_try.hpp"
+#include "core/run/phase_timers.hpp"
+#include "core/run/run_record.hpp"
+#include "core/petsc/petsc_session.hpp"
+#include "core/run/signals.hpp"
+#include "solvers/mpm2grid/io/checkpoint_state.hpp"
+#include "solvers/mpm2grid/io/particle_output.hpp"
+#include "solvers/mpm2grid/scenes/scene.hpp"
+
+namespace suite::mpm2grid {
+namespace {
+
+const std::vector<io::CsvColumn> kColumns{
+    {"time", "s"},          {"dt", "s"},           {"water_front", "m"},      {"water_mass", "kg"},
+    {"soil_mass", "kg"},    {"outflow_water_mass", "kg"}, {"outflow_soil_mass", "kg"}, {"kinetic_energy", "J"},
+    {"water_particles", ""}, {"soil_particles", ""}};
+
+// The farthest water particle along x plus half a particle spacing: the surge front of a
+// collapsing column (Martin & Moyce measured the leading edge).
+template <int Dim>
+double water_front(const Simulation<Dim>& sim, double half_spacing) {
+  double front = -std::numeric_limits<double>::infinity();
+  for (const auto& x : sim.water().x) front = std::max(front, x[0]);
+  return sim.water().size() ? front + half_spacing : std::nan("");
+}
+
+template <int Dim>
+bool finite_state(const Particles<Dim>& P, std::size_t& bad) {
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (!P.x[p].allFinite() || !P.v[p].allFinite()) {
+      bad = p;
+      return false;
+    }
+  return true;
+}
+
+constexpr const char* kSolver = "mpm2grid";
+constexpr long long kCheckpointFormat = 1;
+
+template <int Dim>
+class MpmRun {
+ public:
+  MpmRun(const mpi::Comm& comm, const config::Config& cfg, const RunOptions& o, Logger& log)
+      : comm_(comm),
+        scene_(read_scene<Dim>(cfg)),
+        log_(log),
+        record_(comm, kSolver, o.argv),
+        petsc_(petsc_session(comm, scene_)),
+        sim_(scene_.simulation, comm) {
+    if (comm.size() > 1)
+      throw InputError(fmt::format("mpm2grid runs on one rank for now, not {}: the domain decomposition over "
+                                   "ranks (METIS-balanced grid blocks) is not built yet; run without mpiexec",
+                                   comm.size()));
+    out_ = io::prepare_output_dir(comm, o.out);
+    io::prepare_output_dir(comm, out_ / "particles");
+    checkpoints_ = io::prepare_output_dir(comm, out_ / "checkpoints");
+    mpi::collective_try(comm, [&] {
+      if (!comm.is_root()) return;
+      cfg.write_effective(out_ / "effective_config.yaml");
+      log.add_file(out_ / "log.txt");
+    });
+    half_spacing_ = 0.5 * scene_.simulation.h / scene_.particles_per_cell;
+  }
+
+  int run(const std::optional<std::string>& restart) {
+    if (restart) {
+      resume(*restart);
+    } else {
+      discard_checkpoints_after(-1);  // a fresh start: checkpoints of an earlier run are stale
+      seed_particles(scene_, sim_);
+      p_.next_sample = scene_.time.series;
+      p_.next_output = scene_.time.output;
+      p_.smallest_dt = std::numeric_limits<double>::infinity();
+      start_outputs(false);
+      sample(0);
+      output();
+    }
+    log_.info("{}D scene {}: h = {} m, {} water and {} soil particles, drag {}", Dim, scene_.name,
+              scene_.simulation.h, sim_.water().size(), sim_.soil().size(), drag_name(scene_.simulation.drag));
+    SignalWatcher signals;
+    checkpoint::Schedule schedule(scene_.checkpoints);
+    ProgressLine progress(log_, sim_.time(), scene_.time.end);
+    const long long first_step = sim_.steps();
+    const double end = scene_.time.end * (1 - 1e-12);
+    while (sim_.time() < end) {
+      advance();
+      progress.report(sim_.steps(), sim_.time(), last_dt_);
+      const SignalRequest req = signals.poll(comm_);
+      const bool max_reached = scene_.time.max_steps > 0 && sim_.steps() - first_step >= scene_.time.max_steps &&
+                               sim_.time() < end;
+      if (schedule.due(comm_, sim_.steps(), req) || max_reached) {
+        write_checkpoint();
+        schedule.written();
+      }
+      if (req == SignalRequest::checkpoint_and_stop || max_reached) {
+        const std::string why =
+            max_reached ? fmt::format("time.max_steps = {}", scene_.time.max_steps) : describe(req);
+        log_.warn("stopped at step {} (t = {} s) on {}; continue with --restart latest", sim_.steps(), sim_.time(),
+                  why);
+        record_.write(out_ / "run.json", timers_, "stopped: " + why);
+        return 0;
+      }
+    }
+    finish();
+    return 0;
+  }
+
+ private:
+  // One step of the adaptive size, cut to land on the next sample, output or end time; then the
+  // samples and outputs due.
+  void advance() {
+    const StepLimit limit = sim_.stable_dt();
+    ++p_.limiters[limit.limiter];
+    const double to_event = std::min({p_.next_sample, p_.next_output, scene_.time.end}) - sim_.time();
+    const double dt = std::min(limit.dt, to_event);
+    {
+      ScopedPhase phase(timers_, "step");
+      sim_.step(dt);
+    }
+    drag_iterations_ = std::max(drag_iterations_, static_cast<long long>(sim_.drag_stats().iterations));
+    last_dt_ = dt;
+    p_.smallest_dt = std::min(p_.smallest_dt, dt);
+    std::size_t bad = 0;
+    for (const auto* P : {&sim_.water(), &sim_.soil()})
+      if (!finite_state(*P, bad))
+        throw InputError(fmt::format(
+            "the run blew up at step {} (t = {:.6g} s, dt = {:.4g} s limited by {}): a {} particle's position or "
+            "velocity is not finite; the last good checkpoint is kept in {}; lower time.cfl or time.dt_max",
+            sim_.steps(), sim_.time(), dt, limit.limiter, P == &sim_.water() ? "water" : "soil",
+            checkpoints_.string()));
+    const double end = scene_.time.end * (1 - 1e-12);
+    if (sim_.time() >= p_.next_sample * (1 - 1e-12)) {
+      sample(dt);
+      p_.next_sample += scene_.time.series;
+    }
+    if (sim_.time() >= p_.next_output * (1 - 1e-12) || sim_.time() >= end) {
+      output();
+      p_.next_output += scene_.time.output;
+    }
+  }
+
+  // Rank 0 owns the CSV and XDMF files; a problem with them stops every rank. COLLECTIVE.
+  void start_outputs(bool resuming) {
+    mpi::collective_try(comm_, [&] {
+      if (!comm_.is_root()) return;
+      const double t = sim_.time();
+      csv_ = resuming ? io::CsvSeries::resume_at(out_ / "series.csv", kColumns, t)
+                      : io::CsvSeries(out_ / "series.csv", kColumns);
+      xdmf_.emplace(out_ / "particles.xmf");
+      if (resuming) xdmf_->resume_at(t);
+    });
+  }
+
+  void sample(double dt) {
+    if (!csv_) return;
+    ScopedPhase phase(timers_, "output");
+    csv_->append({sim_.time(), dt, water_front(sim_, half_spacing_), sim_.water().total_mass(),
+                  sim_.soil().total_mass(), sim_.outflow().water_mass, sim_.outflow().soil_mass,
+                  sim_.kinetic_energy(), static_cast<double>(sim_.water().size()),
+                  static_cast<double>(sim_.soil().size())});
+  }
+
+  void output() {
+    ScopedPhase phase(timers_, "output");
+    write_particles(comm_, sim_, out_, fmt::format("particles/step_{:06d}.h5", sim_.steps()),
+                    xdmf_ ? &*xdmf_ : nullptr);
+    ++p_.files;
+  }
+
+  void write_checkpoint() {
+    ScopedPhase phase(timers_, "checkpoint");
+    const auto path = checkpoint::file_name(checkpoints_, "checkpoint", sim_.steps());
+    checkpoint::Writer w(comm_, path, {kSolver, kCheckpointFormat, sim_.steps(), sim_.time(), "", 0});
+    w.write<double>("scene", scene_.fingerprint());
+    write_state(w, sim_, p_);
+    w.commit();
+    if (comm_.is_root()) checkpoint::prune(checkpoints_, "checkpoint", scene_.checkpoints.keep);
+    record_.write(out_ / "run.json", timers_, fmt::format("running: checkpoint at step {}", sim_.steps()));
+    log_.info("checkpoint {} written", path.filename().string());
+  }
+
+  void discard_checkpoints_after(long long step) {
+    int removed = 0;
+    if (comm_.is_root()) removed = checkpoint::discard_after(checkpoints_, "checkpoint", step);
+    if (removed > 0)
+      log_.warn("removed {} checkpoint(s) after step {} left by an earlier run", removed, std::max(step, 0LL));
+  }
+
+  void resume(const std::string& which) {
+    std::filesystem::path path = which;
+    if (which == "latest") {
+      const auto found = checkpoint::latest(comm_, checkpoints_, "checkpoint");
+      if (!found)
+        throw InputError(fmt::format(
+            "--restart latest: no checkpoint in '{}'; run without --restart to start from t = 0",
+            checkpoints_.string()));
+      path = *found;
+    }
+    checkpoint::Reader r(comm_, path, kSolver, kCheckpointFormat);
+    if (r.read<double>("scene") != scene_.fingerprint())
+      throw InputError(fmt::format("checkpoint '{}' was written for another scene (grid, materials, walls or time "
+                                   "settings differ); restart with the scene it was written with",
+                                   path.string()));
+    read_state(r, sim_, p_);
+    record_.extra()["restarted_from"] = path.string();
+    discard_checkpoints_after(sim_.steps());  // later ones belong to the run being replaced
+    log_.info("restarting from {} at step {} (t = {} s)", path.filename().string(), sim_.steps(), sim_.time());
+    start_outputs(true);
+  }
+
+  void finish() {
+    Summary summary;
+    summary.set("end_time", sim_.time(), "s");
+    summary.set("steps", static_cast<double>(sim_.steps()));
+    summary.set("smallest_dt", p_.smallest_dt, "s");
+    summary.set("water_front", water_front(sim_, half_spacing_), "m");
+    summary.set("water_mass", sim_.water().total_mass(), "kg");
+    summary.set("soil_mass", sim_.soil().total_mass(), "kg");
+    summary.set("outflow_water_mass", sim_.outflow().water_mass, "kg");
+    summary.set("outflow_soil_mass", sim_.outflow().soil_mass, "kg");
+    mpi::collective_try(comm_, [&] {
+      if (comm_.is_root()) summary.write(out_ / "summary.json");
+    });
+    std::string limits;
+    for (const auto& [why, n] : p_.limiters)
+      limits += fmt::format("{}{}: {} steps", limits.empty() ? "" : ", ", why, n);
+    record_.extra()["dt_limiters"] = p_.limiters;
+    if (scene_.simulation.drag == DragScheme::consistent) record_.extra()["drag_ksp_max_iterations"] = drag_iterations_;
+    record_.write(out_ / "run.json", timers_, "completed");
+    log_.info("done: {} steps to t = {} s (dt limited by {}); {} particle files", sim_.steps(), sim_.time(), limits,
+              p_.files);
+  }
+
+  // A PETSc session for the consistent drag only.
+  static std::unique_ptr<PetscSession> petsc_session(const mpi::Comm& comm, const Scene<Dim>& scene) {
+    if (scene.simulation.drag != DragScheme::consistent) return nullptr;
+    return std::make_unique<PetscSession>(comm, scene.petsc_options);
+  }
+
+  static const char* drag_name(DragScheme d) {
+    switch (d) {
+      case DragScheme::lumped:
+        return "lumped (implicit, closed form per node)";
+      case DragScheme::consistent:
+        return "consistent (implicit, PETSc KSP with prefix drag_; CG + Jacobi unless petsc_options say otherwise)";
+      case DragScheme::explicit_euler:
+        break;
+    }
+    return "explicit (forward Euler; unstable above dt = 2 tau_d)";
+  }
+
+  mpi::Comm comm_;
+  Scene<Dim> scene_;
+  Logger& log_;
+  RunRecord record_;
+  std::unique_ptr<PetscSession> petsc_;  // before sim_: the drag solver's objects go first
+  PhaseTimers timers_;
+  Simulation<Dim> sim_;
+  std::filesystem::path out_, checkpoints_;
+  double half_spacing_ = 0, last_dt_ = 0;
+  long long drag_iterations_ = 0;  // most KSP iterations of one consistent drag solve in this run
+  RunProgress p_;
+  std::optional<io::CsvSeries> csv_;    // rank 0 only
+  std::optional<io::XdmfSeries> xdmf_;  // rank 0 only
+};
+
+}  // namespace
+
+int run_mpm(const mpi::Comm& comm, const config::Config& scene, const RunOptions& options, Logger& log) {
+  if (scene_dimension(scene) == 2) return MpmRun<2>(comm, scene, options, log).run(options.restart);
+  return MpmRun<3>(comm, scene, options, log).run(options.restart);
+}
+
+}  // namespace suite::mpm2grid

@@ -1,0 +1,94 @@
+#pragma once
+// Cubic B-spline interpolation weights (spec/mpm2grid.md, "Discretization"):
+//   N(x) = 1/2 |x|^3 - |x|^2 + 2/3   on [0, 1),   1/6 (2 - |x|)^3   on [1, 2),   0 beyond,
+// x in units of the grid spacing h, tensor product over the dimensions. A particle at x_p
+// touches the 4^Dim nodes base + k, k in {0..3}^Dim, base = floor(x_p / h) - 1 (grid origin at 0).
+// The weights are a partition of unity and reproduce linear functions (sum_i w_ip x_i = x_p),
+// which is what makes APIC's transfers conserve angular momentum.
+#include <array>
+#include <cmath>
+
+#include <Eigen/Core>
+
+namespace suite::mpm2grid {
+
+template <int Dim>
+using Vec = Eigen::Matrix<double, Dim, 1>;
+template <int Dim>
+using Mat = Eigen::Matrix<double, Dim, Dim>;
+template <int Dim>
+using Index = std::array<int, Dim>;
+
+// N(r) and dN/dr for one axis.
+inline double cubic_bspline(double r) {
+  const double a = std::abs(r);
+  if (a < 1) return 0.5 * a * a * a - a * a + 2.0 / 3.0;
+  if (a < 2) return (2 - a) * (2 - a) * (2 - a) / 6.0;
+  return 0;
+}
+
+inline double cubic_bspline_derivative(double r) {
+  const double a = std::abs(r), s = r < 0 ? -1.0 : 1.0;
+  if (a < 1) return s * (1.5 * a * a - 2 * a);
+  if (a < 2) return -s * 0.5 * (2 - a) * (2 - a);
+  return 0;
+}
+
+// APIC's inertia-like tensor for cubic B-splines is D = h^2 / 3 I, so D^-1 = 3 / h^2.
+inline double apic_inverse_d(double h) { return 3.0 / (h * h); }
+
+// The 4^Dim weights of one particle and their gradients (per metre).
+template <int Dim>
+struct Stencil {
+  Index<Dim> base{};                            // node index of corner k = 0
+  std::array<std::array<double, 4>, Dim> w{};   // per axis
+  std::array<std::array<double, 4>, Dim> dw{};  // per axis, d/dx in 1/m
+
+  // x in metres relative to the grid origin, h the node spacing.
+  Stencil(const Vec<Dim>& x, double h) {
+    for (int d = 0; d < Dim; ++d) {
+      const double xi = x[d] / h;
+      base[d] = static_cast<int>(std::floor(xi)) - 1;
+      for (int k = 0; k < 4; ++k) {
+        const double r = xi - (base[d] + k);
+        w[d][k] = cubic_bspline(r);
+        dw[d][k] = cubic_bspline_derivative(r) / h;
+      }
+    }
+  }
+
+  double weight(const Index<Dim>& k) const {
+    double v = 1;
+    for (int d = 0; d < Dim; ++d) v *= w[d][k[d]];
+    return v;
+  }
+
+  Vec<Dim> gradient(const Index<Dim>& k) const {
+    Vec<Dim> g;
+    for (int d = 0; d < Dim; ++d) {
+      double v = dw[d][k[d]];
+      for (int e = 0; e < Dim; ++e)
+        if (e != d) v *= w[e][k[e]];
+      g[d] = v;
+    }
+    return g;
+  }
+
+  // Calls f(k, node index) for every corner k of the 4^Dim stencil, x fastest.
+  template <class F>
+  void for_each(F&& f) const {
+    Index<Dim> k{};
+    for (int n = 0; n < (Dim == 2 ? 16 : 64); ++n) {
+      int r = n;
+      Index<Dim> node;
+      for (int d = 0; d < Dim; ++d) {
+        k[d] = r % 4;
+        r /= 4;
+        node[d] = base[d] + k[d];
+      }
+      f(k, node);
+    }
+  }
+};
+
+}  // namespace suite::mpm2grid

@@ -1,0 +1,166 @@
+#pragma once
+// Soil: Hencky elasticity with Drucker-Prager plasticity whose cohesion drops with water
+// saturation (spec/mpm2grid.md, "Soil"; Klar et al. 2016, Tampubolon et al. 2017).
+//
+// Units: stresses, moduli and cohesion in Pa (N/m^2; Kirchhoff stress tau = J sigma also in Pa),
+// energy density in J/m^3 of the reference volume, angles in radians, strains dimensionless.
+// In 2D (plane strain) the same formulas hold with Dim = 2; every trace, deviator and norm runs
+// over Dim dimensions.
+//
+// Elasticity. F_E = U diag(sigma) V^T with U, V rotations (materials/polar_svd.hpp), principal
+// Hencky strain eps = log(sigma), and
+//   psi = mu tr(eps^2) + lambda/2 (tr eps)^2               energy per reference volume, J/m^3
+//   tau = U diag(2 mu eps + lambda tr(eps) 1) U^T         Kirchhoff stress, Pa
+//   P   = dpsi/dF_E = tau F_E^-T = U diag((2 mu eps_i + lambda tr eps) / sigma_i) V^T   Pa
+// tau is linear in eps, so the return mapping below is exact (no iteration).
+//
+// Plasticity (compression positive). With bulk modulus K = lambda + 2 mu / Dim and
+//   p = -K tr(eps)                       pressure, Pa  (= -tr(tau) / Dim)
+//   q = 2 mu sqrt(3/2) |dev eps|         equivalent shear stress, Pa  (= sqrt(3/2) |dev tau|)
+// the admissible states are q <= M p + q_c, a cone in (p, q) with
+//   M   = 6 sin(phi_f) / (3 - sin(phi_f))          (dimensionless slope)
+//   q_c = 6 c cos(phi_f) / (3 - sin(phi_f))        (Pa, the cone's q at p = 0)
+// (the cone through the compression corners of Mohr-Coulomb with friction angle phi_f and
+// cohesion c). The cone's tip (apex) is at p = -q_c / M, i.e. tr(eps) = q_c / (M K) >= 0.
+// Return mapping of a trial strain (non-associative, zero dilatancy):
+//   apex     if M p_tr + q_c <= 0: eps = (q_c / (M K Dim)) 1, the tip (c = 0: eps = 0, F_E a
+//            rotation, tau = 0: separated grains carry no stress);
+//   elastic  if q_tr <= M p_tr + q_c: unchanged;
+//   cone     otherwise: dev eps scaled by (M p_tr + q_c) / q_tr, tr(eps) kept (volume unchanged),
+//            so q = M p_tr + q_c exactly.
+// With phi_f = 0 (M = 0) there is no apex: the surface is the cylinder q <= q_c (pressure-
+// independent), and a cohesionless, frictionless soil keeps only its volumetric response.
+//
+// Cohesion. c(S) = c0 (1 - clamp(S, 0, 1)): dry soil (S = 0) has the full cohesion c0, fully
+// saturated soil (S = 1) none.
+//
+// Volume correction (Tampubolon et al. 2017 as transcribed in shared/background/mpm.md,
+// section 3.2; the Klar 2016 / Ziran "logJp" family). Each particle carries log_jp
+// (dimensionless, the log of a volume ratio). In project():
+//   1. the trial strain is shifted isotropically before the yield test:
+//        eps_tr <- log(sigma(F_trial)) + (log_jp / Dim) 1;
+//   2. after the return, log_jp <- tr(eps_tr shifted) - tr(eps_new), which is
+//        0                            after an elastic or cone return (the shift is absorbed
+//                                     into F_E: elastic F_E = exp(log_jp / Dim) F_trial),
+//        log_jp + log det F_trial - tr(eps_apex)   after an apex return (the volume the apex
+//                                     projection removed from F_E is stored).
+// Invariant (the caller forms F_trial = (I + dt grad v) F_E^n and stores the returned F and
+// log_jp): log det F_E + log_jp grows by exactly log det F_trial - log det F_E^n each step,
+// i.e. by the change of log det F of the total deformation F = F_E F_P. Starting from
+// F_E = F, log_jp = 0 it therefore keeps
+//        log_jp = log det F - log det F_E = log det F_P        (plastic volume change)
+// and log_jp >= 0, with log_jp = 0 whenever the particle is not at the apex. Meaning: sand
+// loosens (gains volume without stress) only while it is pulled apart (at the apex); when it
+// is compressed again it first gives back that stored volume and only then resists, from its
+// original density, so stretch/compress cycles do not ratchet its volume up. Without the
+// correction (volume_correction = false, log_jp passed through unchanged) every apex projection
+// leaves its volume in F_P for good: pulled-apart then re-compressed sand ends up larger at the
+// same stress.
+#include <cmath>
+
+#include "solvers/mpm2grid/materials/polar_svd.hpp"
+
+namespace suite::mpm2grid {
+
+enum class ReturnCase { elastic, cone, apex };
+
+inline const char* to_string(ReturnCase c) {
+  switch (c) {
+    case ReturnCase::elastic:
+      return "elastic";
+    case ReturnCase::cone:
+      return "cone";
+    case ReturnCase::apex:
+      return "apex";
+  }
+  return "?";
+}
+
+// Result of the return mapping in principal strains.
+template <int Dim>
+struct StrainReturn {
+  Vector<Dim> eps;  // returned principal Hencky strain
+  ReturnCase kind = ReturnCase::elastic;
+};
+
+// Result of project().
+template <int Dim>
+struct ReturnResult {
+  Matrix<Dim> F;                          // projected elastic deformation gradient F_E
+  double log_jp = 0;                      // new volume-correction state (see header comment)
+  ReturnCase kind = ReturnCase::elastic;  // which branch of the return mapping was taken
+  double plastic_strain = 0;              // |eps_tr - eps_new| (Frobenius, log strain) removed
+};
+
+// Pressure p (compression positive) and equivalent shear stress q, both Pa.
+struct StressInvariants {
+  double p = 0;
+  double q = 0;
+};
+
+// p = -tr(tau) / Dim, q = sqrt(3/2) |dev tau| of a Kirchhoff stress (Pa). For Hencky these are
+// the same p, q as the return mapping uses, computed from the stress instead of the strain.
+template <int Dim>
+StressInvariants kirchhoff_invariants(const Matrix<Dim>& tau) {
+  const double mean = tau.trace() / Dim;
+  const Matrix<Dim> dev = tau - mean * Matrix<Dim>::Identity();
+  return {-mean, std::sqrt(1.5) * dev.norm()};
+}
+
+struct HenckyDruckerPrager {
+  // A default-constructed material has zero stiffness and is only a placeholder: build real
+  // ones with from_young().
+  double mu = 0;              // shear modulus, Pa
+  double lambda = 0;          // first Lame parameter, Pa
+  double friction_angle = 0;  // phi_f, rad, in [0, pi/2)
+  double cohesion = 0;        // c0 of dry soil, Pa (stress-space form, see q_c above)
+  bool volume_correction = true;
+
+  // mu = E / (2 (1 + nu)), lambda = E nu / ((1 + nu)(1 - 2 nu)). Throws suite::InputError
+  // unless E > 0, -1 < nu < 0.5, 0 <= phi_f < pi/2, c0 >= 0 (all finite).
+  static HenckyDruckerPrager from_young(double young, double poisson, double friction_angle, double cohesion,
+                                        bool volume_correction = true);
+
+  // K = lambda + 2 mu / Dim, Pa.
+  template <int Dim>
+  double bulk_modulus() const {
+    return lambda + 2.0 * mu / Dim;
+  }
+  // M = 6 sin(phi_f) / (3 - sin(phi_f)), dimensionless.
+  double friction_slope() const;
+  // c(S) = c0 (1 - clamp(S, 0, 1)), Pa.
+  double cohesion_at(double saturation) const;
+  // q_c(S) = 6 c(S) cos(phi_f) / (3 - sin(phi_f)), Pa.
+  double cohesion_intercept(double saturation) const;
+  // P-wave speed sqrt((lambda + 2 mu) / rho), m/s, rho in kg/m^3: the fastest elastic wave,
+  // for the time-step limit.
+  double p_wave_speed(double density) const;
+
+  // Kirchhoff stress tau (Pa) of an elastic deformation gradient with det F_E > 0.
+  template <int Dim>
+  Matrix<Dim> kirchhoff(const Matrix<Dim>& F_E) const;
+  // First Piola-Kirchhoff stress P = dpsi/dF_E = tau F_E^-T (Pa).
+  template <int Dim>
+  Matrix<Dim> first_piola(const Matrix<Dim>& F_E) const;
+  // Energy density psi (J/m^3 of reference volume).
+  template <int Dim>
+  double energy_density(const Matrix<Dim>& F_E) const;
+
+  // p and q (Pa) of a principal Hencky strain.
+  template <int Dim>
+  StressInvariants invariants(const Vector<Dim>& eps) const;
+  // The return mapping on principal strains (no volume correction): apex, elastic or cone.
+  template <int Dim>
+  StrainReturn<Dim> return_strain(const Vector<Dim>& eps_trial, double saturation) const;
+  // The full plastic step of one particle: SVD of the trial F_E, volume-correction shift,
+  // return mapping with the cohesion of `saturation`, F_E = U exp(eps_new) V^T, new log_jp.
+  // An elastic return gives back F_trial itself (times exp(log_jp / Dim) when the volume
+  // correction has something stored), with no SVD round-off.
+  template <int Dim>
+  ReturnResult<Dim> project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const;
+};
+
+// The member templates above are defined, and instantiated for Dim = 2 and 3, in
+// hencky_drucker_prager.cpp (link it; callers never instantiate them).
+
+}  // namespace suite::mpm2grid

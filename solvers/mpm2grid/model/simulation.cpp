@@ -1,0 +1,149 @@
+#include "solvers/mpm2grid/model/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include "solvers/mpm2grid/transfer/apic.hpp"
+
+namespace suite::mpm2grid {
+
+template <int Dim>
+Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm)
+    : s_(settings), grid_(settings.h), comm_(std::move(comm)) {
+  if (s_.drag != DragScheme::consistent) return;
+  if (!comm_) throw std::invalid_argument("the consistent drag solve needs a communicator");
+  consistent_ = std::make_unique<ConsistentDrag<Dim>>(*comm_, "drag_");
+}
+
+template <int Dim>
+StepLimit Simulation<Dim>::stable_dt() const {
+  double vmax = 0;
+  for (const auto* P : {&water_, &soil_})
+    for (const auto& v : P->v) vmax = std::max(vmax, v.norm());
+  const double h = s_.h;
+  StepLimit best{s_.dt_max, "dt_max"};
+  auto consider = [&](double dt, const char* why) {
+    if (dt < best.dt) best = {dt, why};
+  };
+  if (vmax > 0) consider(s_.cfl * h / vmax, "cfl (velocity)");
+  if (water_.size() > 0) consider(s_.cfl * h / s_.water.eos.sound_speed(s_.water.density), "water wave speed");
+  if (soil_.size() > 0) consider(s_.cfl * h / s_.soil.material.p_wave_speed(s_.soil.density), "soil elastic wave speed");
+  return best;
+}
+
+template <int Dim>
+void Simulation<Dim>::build_grid() {
+  grid_.clear();
+  touch_blocks(water_, grid_);
+  touch_blocks(soil_, grid_);
+  water_nodes_.reset(grid_.nodes());
+  soil_nodes_.reset(grid_.nodes());
+}
+
+// Kirchhoff stresses and the soil's drag coefficients c_E V_p.
+template <int Dim>
+void Simulation<Dim>::stresses() {
+  water_tau_.resize(water_.size());
+  for (std::size_t p = 0; p < water_.size(); ++p) water_tau_[p] = s_.water.eos.template kirchhoff<Dim>(water_.J[p]);
+  soil_tau_.resize(soil_.size());
+  soil_drag_.resize(soil_.size());
+  const double c_e = s_.soil.drag_coefficient(s_.water.density);
+  for (std::size_t p = 0; p < soil_.size(); ++p) {
+    soil_tau_[p] = s_.soil.material.template kirchhoff<Dim>(soil_.F[p]);
+    soil_drag_[p] = c_e * soil_.volume0[p] * soil_.F[p].determinant();
+  }
+}
+
+template <int Dim>
+void Simulation<Dim>::step(double dt) {
+  build_grid();
+  stresses();
+  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_);
+  particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_);
+  for (std::size_t i = 0; i < grid_.nodes(); ++i) {
+    water_nodes_.force[i] += water_nodes_.mass[i] * s_.gravity;
+    soil_nodes_.force[i] += soil_nodes_.mass[i] * s_.gravity;
+  }
+  if (consistent_) {
+    const auto numbering = NodeNumbering::own_all(*comm_, soil_nodes_, water_nodes_);
+    drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering);
+  } else {
+    solve_grid_velocities(soil_nodes_, water_nodes_, dt, s_.drag);
+  }
+  s_.walls.apply(grid_, water_nodes_);
+  s_.walls.apply(grid_, soil_nodes_);
+  update_particles(dt);
+  update_saturation();
+  remove_outflow();
+  time_ += dt;
+  ++steps_;
+}
+
+template <int Dim>
+void Simulation<Dim>::update_particles(double dt) {
+  const Mat<Dim> I = Mat<Dim>::Identity();
+  grid_to_particles(water_, grid_, water_nodes_, grad_v_);
+  for (std::size_t p = 0; p < water_.size(); ++p) {
+    water_.x[p] += dt * water_.v[p];
+    water_.J[p] *= 1 + dt * grad_v_[p].trace();
+    s_.walls.clamp(water_.x[p]);
+  }
+  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_);
+  for (std::size_t p = 0; p < soil_.size(); ++p) {
+    soil_.x[p] += dt * soil_.v[p];
+    const Mat<Dim> trial = (I + dt * grad_v_[p]) * soil_.F[p];
+    const auto r = s_.soil.material.template project<Dim>(trial, soil_.log_jp[p], soil_.saturation[p]);
+    soil_.F[p] = r.F;
+    soil_.log_jp[p] = r.log_jp;
+    s_.walls.clamp(soil_.x[p]);
+  }
+}
+
+template <int Dim>
+void Simulation<Dim>::update_saturation() {
+  if (soil_.size() == 0) return;
+  const double h = s_.h, node_volume = std::pow(h, Dim);
+  const double full = s_.water.density * node_volume * s_.soil.porosity;
+  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  for (std::size_t p = 0; p < soil_.size(); ++p) {
+    const Stencil<Dim> st(soil_.x[p], h);
+    grid_.stencil_slots(st, slots);
+    double phi = 0;
+    int n = 0;
+    st.for_each([&](const Index<Dim>& k, const Index<Dim>&) {
+      const long i = slots[n++];
+      if (i >= 0) phi += st.weight(k) * water_nodes_.mass[i];
+    });
+    soil_.saturation[p] = std::clamp(phi / full, 0.0, 1.0);
+  }
+}
+
+template <int Dim>
+void Simulation<Dim>::remove_outflow() {
+  auto book = [&](Particles<Dim>& P, double& mass) {
+    P.retain([&](std::size_t p) {
+      if (!s_.walls.left_through_open_side(P.x[p])) return true;
+      mass += P.mass[p];
+      outflow_.momentum += P.mass[p] * P.v[p];
+      return false;
+    });
+  };
+  book(water_, outflow_.water_mass);
+  book(soil_, outflow_.soil_mass);
+}
+
+template <int Dim>
+double Simulation<Dim>::kinetic_energy() const {
+  double e = 0;
+  for (const auto* P : {&water_, &soil_})
+    for (std::size_t p = 0; p < P->size(); ++p) e += 0.5 * P->mass[p] * P->v[p].squaredNorm();
+  return e;
+}
+
+template class Simulation<2>;
+template class Simulation<3>;
+
+}  // namespace suite::mpm2grid

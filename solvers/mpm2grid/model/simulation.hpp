@@ -1,0 +1,138 @@
+#pragma once
+// One two-species (soil + water) MPM model and its time step (spec/mpm2grid.md, "Step n -> n+1"):
+//   1. blocks of the sparse grid from both species' stencils;
+//   2. P2G per species: mass, APIC momentum, internal force from the Kirchhoff stresses (soil:
+//      Hencky; water: weakly compressible), the soil's drag coefficients c_E V_p; gravity;
+//   3. the drag-coupled grid velocity solve (coupling/drag_solve.hpp);
+//   4. wall conditions on both grids;
+//   5. G2P per species, positions, F_E (soil, then the Drucker-Prager return mapping with the
+//      cohesion of the particle's saturation) and J (water);
+//   6. particles that left through an open side are removed and booked as outflow.
+// Saturation: the water grid's volume fraction phi_i = m_w,i / (rho_w h^Dim), and a soil
+// particle's S = clamp(sum_i w_ip phi_i / n, 0, 1), n the soil's porosity: pores full of water
+// give S = 1.
+// Buoyancy is not modelled yet: both species feel gravity with their own masses, and the only
+// exchange between them is the drag.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solvers/mpm2grid/boundary/walls.hpp"
+#include "solvers/mpm2grid/coupling/consistent_drag.hpp"
+#include "solvers/mpm2grid/coupling/drag_solve.hpp"
+#include "solvers/mpm2grid/grid/block_grid.hpp"
+#include "solvers/mpm2grid/materials/hencky_drucker_prager.hpp"
+#include "solvers/mpm2grid/materials/weakly_compressible_water.hpp"
+#include "solvers/mpm2grid/particles/particles.hpp"
+
+namespace suite::mpm2grid {
+
+struct WaterSettings {
+  double density = 1000;  // kg/m^3
+  WeaklyCompressibleWater eos;
+};
+
+struct SoilSettings {
+  double density = 2000;      // kg/m^3 of the soil skeleton's particles
+  double porosity = 0.4;      // n
+  double conductivity = 1e-4; // hydraulic conductivity k, m/s
+  HenckyDruckerPrager material;
+
+  // The drag coefficient c_E = n^2 rho_w g0 / k (kg m^-3 s^-1). g0 is standard gravity, not the
+  // scene's: a hydraulic conductivity is measured on Earth (k = kappa rho_w g0 / mu_w), and a
+  // scene with another gravity (Table 3.4's 3 m/s^2) keeps its soil's permeability.
+  double drag_coefficient(double water_density) const {
+    constexpr double g0 = 9.80665;
+    return porosity * porosity * water_density * g0 / conductivity;
+  }
+};
+
+template <int Dim>
+struct SimulationSettings {
+  double h = 0.01;  // grid spacing, m
+  Vec<Dim> gravity = Vec<Dim>::Zero();
+  Walls<Dim> walls;
+  WaterSettings water;
+  SoilSettings soil;
+  DragScheme drag = DragScheme::lumped;
+  double cfl = 0.4;        // fraction of a cell a particle or a wave may cross per step
+  double dt_max = 1e-3;    // s
+};
+
+// What limits the time step, for the log.
+struct StepLimit {
+  double dt = 0;
+  std::string limiter;  // "cfl (velocity)", "water wave speed", "soil elastic wave speed", "dt_max"
+};
+
+// Sums over the particles of a species or the outflow record.
+template <int Dim>
+struct Outflow {
+  double water_mass = 0, soil_mass = 0;  // kg that left through open sides
+  Vec<Dim> momentum = Vec<Dim>::Zero();  // their momentum when they left
+};
+
+template <int Dim>
+class Simulation {
+ public:
+  // `comm` is needed for the consistent drag (a PETSc solve on it, inside a PetscSession, with the
+  // options prefix "drag_"); the other schemes need none.
+  explicit Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm = std::nullopt);
+
+  Particles<Dim>& water() { return water_; }
+  Particles<Dim>& soil() { return soil_; }
+  const Particles<Dim>& water() const { return water_; }
+  const Particles<Dim>& soil() const { return soil_; }
+  const SimulationSettings<Dim>& settings() const { return s_; }
+  const BlockGrid<Dim>& grid() const { return grid_; }
+  const Outflow<Dim>& outflow() const { return outflow_; }
+
+  double time() const { return time_; }
+  // The consistent drag's last KSP solve (zero before the first, or for the other schemes).
+  const SolveStats& drag_stats() const { return drag_stats_; }
+  long long steps() const { return steps_; }
+
+  // The largest stable dt now: cfl h / max |v_p|, cfl h / c for the water's and the soil's wave
+  // speeds, and dt_max. Drag never limits it (implicit).
+  StepLimit stable_dt() const;
+
+  // Advances by dt.
+  void step(double dt);
+
+  // Sets the clock, step count and outflow record of a run read back from a checkpoint (the
+  // particles are set through water() and soil()).
+  void restore(double time, long long steps, const Outflow<Dim>& outflow) {
+    time_ = time;
+    steps_ = steps;
+    outflow_ = outflow;
+  }
+
+  // Kinetic energy of both species, J (J/m in 2D).
+  double kinetic_energy() const;
+
+ private:
+  void build_grid();
+  void stresses();
+  void update_particles(double dt);
+  void update_saturation();
+  void remove_outflow();
+
+  SimulationSettings<Dim> s_;
+  Particles<Dim> water_, soil_;
+  BlockGrid<Dim> grid_;
+  NodeFields<Dim> water_nodes_, soil_nodes_;
+  std::vector<Mat<Dim>> water_tau_, soil_tau_, grad_v_;
+  std::vector<double> soil_drag_;
+  std::optional<mpi::Comm> comm_;
+  std::unique_ptr<ConsistentDrag<Dim>> consistent_;
+  SolveStats drag_stats_{};
+  Outflow<Dim> outflow_;
+  double time_ = 0;
+  long long steps_ = 0;
+};
+
+extern template class Simulation<2>;
+extern template class Simulation<3>;
+
+}  // namespace suite::mpm2grid

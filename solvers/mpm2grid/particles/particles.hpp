@@ -1,0 +1,65 @@
+#pragma once
+// One species' material points as a structure of arrays (spec/mpm2grid.md). Units: metres,
+// seconds, kilograms; in 2D masses and volumes are per metre of thickness (kg/m, m^2).
+#include <cstddef>
+#include <vector>
+
+#include "solvers/mpm2grid/kernels/bspline.hpp"
+
+namespace suite::mpm2grid {
+
+template <int Dim>
+struct Particles {
+  std::vector<Vec<Dim>> x;           // position, m
+  std::vector<Vec<Dim>> v;           // velocity, m/s
+  std::vector<Mat<Dim>> C;           // APIC affine velocity, 1/s
+  std::vector<double> mass;          // kg
+  std::vector<double> volume0;       // initial volume V_p^0, m^3
+  std::vector<Mat<Dim>> F;           // soil: elastic deformation gradient F_E (identity for water)
+  std::vector<double> J;             // water: volume ratio J = V / V^0 (1 for soil)
+  std::vector<double> log_jp;        // soil: Drucker-Prager volume correction, log of a volume ratio
+  std::vector<double> saturation;    // soil: water fraction seen from the water grid, [0, 1]
+
+  std::size_t size() const { return x.size(); }
+
+  void add(const Vec<Dim>& position, const Vec<Dim>& velocity, double m, double volume) {
+    x.push_back(position);
+    v.push_back(velocity);
+    C.push_back(Mat<Dim>::Zero());
+    mass.push_back(m);
+    volume0.push_back(volume);
+    F.push_back(Mat<Dim>::Identity());
+    J.push_back(1.0);
+    log_jp.push_back(0.0);
+    saturation.push_back(0.0);
+  }
+
+  // Keeps the particles for which keep(p) is true, in order.
+  template <class Keep>
+  void retain(Keep&& keep) {
+    std::size_t n = 0;
+    for (std::size_t p = 0; p < size(); ++p) {
+      if (!keep(p)) continue;
+      if (n != p) {
+        x[n] = x[p], v[n] = v[p], C[n] = C[p], mass[n] = mass[p], volume0[n] = volume0[p];
+        F[n] = F[p], J[n] = J[p], log_jp[n] = log_jp[p], saturation[n] = saturation[p];
+      }
+      ++n;
+    }
+    x.resize(n), v.resize(n), C.resize(n), mass.resize(n), volume0.resize(n);
+    F.resize(n), J.resize(n), log_jp.resize(n), saturation.resize(n);
+  }
+
+  double total_mass() const {
+    double m = 0;
+    for (double mp : mass) m += mp;
+    return m;
+  }
+  Vec<Dim> momentum() const {
+    Vec<Dim> p = Vec<Dim>::Zero();
+    for (std::size_t i = 0; i < size(); ++i) p += mass[i] * v[i];
+    return p;
+  }
+};
+
+}  // namespace suite::mpm2grid

@@ -1,0 +1,224 @@
+#include "solvers/mpm2grid/scenes/scene.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace suite::mpm2grid {
+namespace {
+
+using config::Range;
+
+constexpr const char* kAxes = "xyz";
+
+std::vector<double> point(const config::Section& s, const std::string& key, int dim) {
+  const auto v = s.get<std::vector<double>>(key);
+  if (static_cast<int>(v.size()) != dim) s.reject(key, fmt::format("give {} coordinates in m", dim));
+  for (double x : v)
+    if (!std::isfinite(x)) s.reject(key, "coordinates must be finite numbers");
+  return v;
+}
+
+Region read_region(const config::Section& s, int dim, double floor) {
+  Region r;
+  const bool box = s.has("box"), trapezoid = s.has("trapezoid");
+  if (box == trapezoid) s.reject(box ? "trapezoid" : "box", "give exactly one of box: {lo, hi} or trapezoid: {...}");
+  if (box) {
+    const auto b = s.section("box");
+    r.lo = point(b, "lo", dim);
+    r.hi = point(b, "hi", dim);
+    for (int d = 0; d < dim; ++d)
+      if (!(r.hi[d] > r.lo[d])) b.reject("hi", fmt::format("must exceed lo along {}", kAxes[d]));
+    return r;
+  }
+  const auto t = s.section("trapezoid");
+  r.kind = Region::Kind::trapezoid;
+  r.toe = t.quantity("toe", "m");
+  r.height = t.quantity("height", "m", Range::positive());
+  r.crest_width = t.quantity("crest_width", "m", Range::at_least(0));
+  r.upstream_slope = t.number("upstream_slope", Range::positive());
+  r.downstream_slope = t.number("downstream_slope", Range::positive());
+  r.floor = floor;
+  return r;
+}
+
+std::vector<Region> read_regions(const config::Section& species, int dim, double floor) {
+  std::vector<Region> regions;
+  for (const auto& s : species.sections("regions")) regions.push_back(read_region(s, dim, floor));
+  return regions;
+}
+
+WallKind wall_kind(const config::Section& walls, const std::string& key) {
+  const auto k = walls.choice(key, {"slip", "sticky", "friction", "open"}, "slip");
+  return k == "slip" ? WallKind::slip : k == "sticky" ? WallKind::sticky : k == "friction" ? WallKind::friction
+                                                                                            : WallKind::open;
+}
+
+template <int Dim>
+void check_inside(const config::Section& s, const Region& r, const Vec<Dim>& lo, const Vec<Dim>& hi,
+                  const std::string& what) {
+  if (r.kind == Region::Kind::box) {
+    for (int d = 0; d < Dim; ++d)
+      if (r.lo[d] < lo[d] || r.hi[d] > hi[d])
+        s.reject("regions", fmt::format("{} box [{}, {}] along {} leaves the domain [{}, {}]", what, r.lo[d], r.hi[d],
+                                        kAxes[d], lo[d], hi[d]));
+    return;
+  }
+  const double right = r.toe + r.height / r.upstream_slope + r.crest_width + r.height / r.downstream_slope;
+  if (r.toe < lo[0] || right > hi[0] || r.floor + r.height > hi[1])
+    s.reject("regions", fmt::format("{} trapezoid (x from {} to {:.4g} m, top at y = {:.4g} m) leaves the domain "
+                                    "x in [{}, {}], y up to {}; move the toe or enlarge the domain",
+                                    what, r.toe, right, r.floor + r.height, lo[0], hi[0], hi[1]));
+}
+
+}  // namespace
+
+template <int Dim>
+bool Region::contains(const Vec<Dim>& x) const {
+  if (kind == Kind::box) {
+    for (int d = 0; d < Dim; ++d)
+      if (x[d] < lo[d] || x[d] >= hi[d]) return false;
+    return true;
+  }
+  const double y = x[1] - floor;
+  if (y < 0 || y >= height) return false;
+  const double left = toe + y / upstream_slope;
+  const double right = toe + height / upstream_slope + crest_width + (height - y) / downstream_slope;
+  return x[0] >= left && x[0] < right;
+}
+
+double Region::trapezoid_area() const {
+  return height * (crest_width + 0.5 * height / upstream_slope + 0.5 * height / downstream_slope);
+}
+
+int scene_dimension(const config::Config& scene) {
+  return static_cast<int>(scene.root().integer("dimension", 2, 2, 3));
+}
+
+template <int Dim>
+Scene<Dim> read_scene(const config::Config& cfg) {
+  const auto root = cfg.root();
+  Scene<Dim> sc;
+  sc.name = cfg.source_name();
+  if (scene_dimension(cfg) != Dim) root.reject("dimension", fmt::format("this reader is for {}D scenes", Dim));
+  auto& sim = sc.simulation;
+
+  const auto grid = root.section("grid");
+  sim.h = grid.quantity("spacing", "m", Range::positive());
+  sc.particles_per_cell = static_cast<int>(grid.integer("particles_per_cell", 2, 1, 8));
+
+  const auto domain = root.section("domain");
+  const auto lo = point(domain, "lo", Dim), hi = point(domain, "hi", Dim);
+  for (int d = 0; d < Dim; ++d) {
+    sim.walls.lo[d] = lo[d], sim.walls.hi[d] = hi[d];
+    if (!(hi[d] > lo[d])) domain.reject("hi", fmt::format("must exceed lo along {}", kAxes[d]));
+    for (double v : {lo[d], hi[d]})
+      if (std::abs(v / sim.h - std::round(v / sim.h)) > 1e-6)
+        domain.reject(v == lo[d] ? "lo" : "hi",
+                      fmt::format("{} = {} m is not a multiple of grid.spacing = {} m: walls act on grid planes",
+                                  kAxes[d], v, sim.h));
+  }
+
+  const auto walls = root.section_or_empty("walls");
+  for (int d = 0; d < Dim; ++d) {
+    sim.walls.kind[d][0] = wall_kind(walls, fmt::format("{}_low", kAxes[d]));
+    sim.walls.kind[d][1] = wall_kind(walls, fmt::format("{}_high", kAxes[d]));
+  }
+  sim.walls.friction = root.number("wall_friction", 0.3, Range::at_least(0));
+
+  sim.gravity.setZero();
+  sim.gravity[1] = -root.quantity("gravity", "m/s^2", 9.81, Range::at_least(0));
+
+  if (const auto w = root.optional_section("water")) {
+    sim.water.density = w->quantity("density", "kg/m^3", 1000.0, Range::positive());
+    sim.water.eos.bulk_modulus = w->quantity("bulk_modulus", "Pa", Range::positive());
+    sim.water.eos.gamma = w->number("gamma", 7.0, Range::positive());
+    sc.water_regions = read_regions(*w, Dim, lo[1]);
+    for (const auto& r : sc.water_regions) check_inside<Dim>(*w, r, sim.walls.lo, sim.walls.hi, "water");
+  }
+  if (const auto s = root.optional_section("soil")) {
+    sim.soil.density = s->quantity("density", "kg/m^3", Range::positive());
+    const double young = s->quantity("young", "Pa", Range::positive());
+    const double poisson = s->number("poisson", 0.3, Range{-1.0, 0.5, true, true});
+    const double phi = s->quantity("friction_angle", "rad", Range::between(0.0, 1.4));
+    const double c0 = s->quantity("cohesion", "Pa", 0.0, Range::at_least(0));
+    sim.soil.material = HenckyDruckerPrager::from_young(young, poisson, phi, c0, s->get<bool>("volume_correction", true));
+    sim.soil.porosity = s->number("porosity", 0.4, Range{0.0, 1.0, true, true});
+    sim.soil.conductivity = s->quantity("conductivity", "m/s", 1e-4, Range::positive());
+    sc.soil_regions = read_regions(*s, Dim, lo[1]);
+    for (const auto& r : sc.soil_regions) check_inside<Dim>(*s, r, sim.walls.lo, sim.walls.hi, "soil");
+  }
+  if (sc.water_regions.empty() && sc.soil_regions.empty())
+    root.reject("water", "the scene has no material: give water: {regions: ...} or soil: {regions: ...}");
+
+  const auto drag = root.choice("drag", {"lumped", "consistent", "explicit"}, "lumped");
+  sim.drag = drag == "lumped" ? DragScheme::lumped : drag == "consistent" ? DragScheme::consistent
+                                                                          : DragScheme::explicit_euler;
+  sc.petsc_options = root.get<std::string>("petsc_options", "");
+  const auto time = root.section("time");
+  sc.time.end = time.quantity("end", "s", Range::positive());
+  sim.cfl = time.number("cfl", 0.4, Range{0.0, 1.0, true, true});
+  sim.dt_max = time.quantity("dt_max", "s", 1e-3, Range::positive());
+  sc.time.series = time.quantity("series", "s", sc.time.end / 100, Range::positive());
+  sc.time.output = time.quantity("output", "s", sc.time.end / 10, Range::positive());
+  sc.time.max_steps = time.integer("max_steps", 0, 0, std::numeric_limits<long long>::max());
+  sc.checkpoints = checkpoint::ScheduleSettings::read(root.section_or_empty("checkpoint"), {1000, 1800.0, 2});
+  cfg.finish();
+  return sc;
+}
+
+template <int Dim>
+std::vector<double> Scene<Dim>::fingerprint() const {
+  const auto& s = simulation;
+  std::vector<double> f{double(Dim), s.h, double(particles_per_cell), s.gravity[1], s.cfl, s.dt_max,
+                        time.end, time.series, time.output, s.water.density, s.water.eos.bulk_modulus,
+                        s.water.eos.gamma, s.soil.density, s.soil.porosity, s.soil.conductivity,
+                        double(static_cast<int>(s.drag))};
+  for (int d = 0; d < Dim; ++d) f.insert(f.end(), {s.walls.lo[d], s.walls.hi[d]});
+  return f;
+}
+
+template <int Dim>
+void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim) {
+  const auto& s = sc.simulation;
+  const int ppc = sc.particles_per_cell;
+  const double spacing = s.h / ppc, volume = std::pow(spacing, Dim);
+  Index<Dim> count;
+  long long total = 1;
+  for (int d = 0; d < Dim; ++d) {
+    count[d] = static_cast<int>(std::llround((s.walls.hi[d] - s.walls.lo[d]) / spacing));
+    total *= count[d];
+  }
+  auto inside = [](const std::vector<Region>& regions, const Vec<Dim>& x) {
+    for (const auto& r : regions)
+      if (r.template contains<Dim>(x)) return true;
+    return false;
+  };
+  for (long long n = 0; n < total; ++n) {
+    long long r = n;
+    Vec<Dim> x;
+    for (int d = 0; d < Dim; ++d) {
+      x[d] = s.walls.lo[d] + (static_cast<double>(r % count[d]) + 0.5) * spacing;
+      r /= count[d];
+    }
+    if (inside(sc.soil_regions, x)) {
+      sim.soil().add(x, Vec<Dim>::Zero(), s.soil.density * volume, volume);
+    } else if (inside(sc.water_regions, x)) {
+      sim.water().add(x, Vec<Dim>::Zero(), s.water.density * volume, volume);
+    }
+  }
+}
+
+template bool Region::contains<2>(const Vec<2>&) const;
+template bool Region::contains<3>(const Vec<3>&) const;
+template struct Scene<2>;
+template struct Scene<3>;
+template Scene<2> read_scene<2>(const config::Config&);
+template Scene<3> read_scene<3>(const config::Config&);
+template void seed_particles<2>(const Scene<2>&, Simulation<2>&);
+template void seed_particles<3>(const Scene<3>&, Simulation<3>&);
+
+}  // namespace suite::mpm2grid

@@ -1,0 +1,78 @@
+#pragma once
+// An mpm2grid scene (YAML; spec/mpm2grid.md, "Scenes"): the box, the grid spacing, the species
+// with their materials and regions, walls, gravity and time control. Example
+// (scenes/water_column_collapse.yaml):
+//
+//   dimension: 2
+//   grid: {spacing: 3.5719 mm, particles_per_cell: 2}       # particles per cell per axis
+//   domain: {lo: [0, 0], hi: [0.4, 0.16]}                    # m, sides on grid planes
+//   walls: {x_low: slip, x_high: slip, y_low: slip, y_high: open}   # slip|sticky|friction|open
+//   wall_friction: 0.3
+//   gravity: 9.81 m/s^2                                      # along -y
+//   water: {density: 1000 kg/m^3, bulk_modulus: 57 kPa, gamma: 7,
+//           regions: [{box: {lo: [0, 0], hi: [0.05715, 0.1143]}}]}
+//   soil: {density: 2000 kg/m^3, young: 10 MPa, poisson: 0.3, friction_angle: 30 deg, cohesion: 0 Pa,
+//          porosity: 0.4, conductivity: 1e-3 m/s,
+//          regions: [{trapezoid: {toe: 1.0, height: 3.75, crest_width: 6, upstream_slope: 0.8333,
+//                                 downstream_slope: 0.8333}}]}
+//   drag: lumped                            # lumped | consistent (PETSc CG) | explicit
+//   petsc_options: "-drag_ksp_rtol 1e-10 -drag_pc_type pbjacobi"   # the consistent solve's KSP
+//   time: {end: 0.2 s, cfl: 0.4, dt_max: 1 ms, series: 2 ms, output: 20 ms, max_steps: 0}
+//   checkpoint: {every_steps: 1000, every: 30 min, keep: 2}      # and on SIGUSR1 / SIGTERM
+//
+// Regions: `box` {lo, hi} (m), or `trapezoid` (a dam cross-section in x-y standing on the
+// domain's floor, extruded over z in 3D): upstream toe at x = toe, height, crest width, slopes
+// as V/H. Water regions leave out the points inside soil regions.
+#include <string>
+#include <vector>
+
+#include "core/checkpoint/schedule.hpp"
+#include "core/config/config.hpp"
+#include "solvers/mpm2grid/model/simulation.hpp"
+
+namespace suite::mpm2grid {
+
+struct Region {
+  enum class Kind { box, trapezoid } kind = Kind::box;
+  std::vector<double> lo, hi;  // box, m
+  double toe = 0, height = 0, crest_width = 0, upstream_slope = 1, downstream_slope = 1;  // trapezoid
+  double floor = 0;  // trapezoid: the y of its base (the domain's floor)
+
+  template <int Dim>
+  bool contains(const Vec<Dim>& x) const;
+  double trapezoid_area() const;  // m^2
+};
+
+struct TimeSettings {
+  double end = 0;          // s
+  double series = 0;       // s between rows of series.csv
+  double output = 0;       // s between particle files
+  long long max_steps = 0; // stop with a checkpoint after this many steps of this run (0: never)
+};
+
+template <int Dim>
+struct Scene {
+  std::string name;
+  SimulationSettings<Dim> simulation;
+  int particles_per_cell = 2;  // per axis
+  std::vector<Region> water_regions, soil_regions;
+  TimeSettings time;
+  std::string petsc_options;  // PETSc options database string for the consistent drag (prefix drag_)
+  checkpoint::ScheduleSettings checkpoints;  // checkpoint: {every_steps, every (wall time), keep}
+
+  // The values a restart must share with the run that wrote the checkpoint.
+  std::vector<double> fingerprint() const;
+};
+
+// The scene's `dimension` (2 or 3), read before the rest.
+int scene_dimension(const config::Config& scene);
+
+// Reads and checks every key; the dimension must match Dim.
+template <int Dim>
+Scene<Dim> read_scene(const config::Config& scene);
+
+// Particles on a regular lattice, particles_per_cell per axis in every cell, where the regions are.
+template <int Dim>
+void seed_particles(const Scene<Dim>& scene, Simulation<Dim>& simulation);
+
+}  // namespace suite::mpm2grid

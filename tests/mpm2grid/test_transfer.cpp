@@ -1,0 +1,178 @@
+// Cubic B-spline weights, the sparse block grid and APIC transfers (spec/mpm2grid.md,
+// "Validation references"): partition of unity, linear reproduction, gradient consistency, and
+// conservation of mass, linear and angular momentum by P2G and by a G2P -> P2G round trip.
+// Tolerances: these identities hold exactly in real arithmetic; sums of O(100) terms of O(1)
+// lose about 1e-14 relative, so 1e-12 leaves a margin of a hundred.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "solvers/mpm2grid/grid/block_grid.hpp"
+#include "solvers/mpm2grid/transfer/apic.hpp"
+
+namespace suite::mpm2grid {
+namespace {
+
+constexpr double kRoundOff = 1e-12;
+
+template <class T>
+class Transfer : public ::testing::Test {};
+using Dims = ::testing::Types<std::integral_constant<int, 2>, std::integral_constant<int, 3>>;
+TYPED_TEST_SUITE(Transfer, Dims);
+
+template <int Dim>
+Vec<Dim> random_point(std::mt19937& rng, double lo, double hi) {
+  std::uniform_real_distribution<double> u(lo, hi);
+  Vec<Dim> x;
+  for (int d = 0; d < Dim; ++d) x[d] = u(rng);
+  return x;
+}
+
+TYPED_TEST(Transfer, WeightsArePartitionOfUnityReproduceLinearFunctionsAndHaveConsistentGradients) {
+  constexpr int Dim = TypeParam::value;
+  std::mt19937 rng(7);
+  const double h = 0.013;
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec<Dim> xp = random_point<Dim>(rng, -0.3, 0.4);  // negative coordinates too
+    const Stencil<Dim> s(xp, h);
+    double sum = 0;
+    Vec<Dim> first = Vec<Dim>::Zero(), grad_sum = Vec<Dim>::Zero();
+    Mat<Dim> x_grad = Mat<Dim>::Zero(), second = Mat<Dim>::Zero();
+    s.for_each([&](const Index<Dim>& k, const Index<Dim>& node) {
+      Vec<Dim> xi;
+      for (int d = 0; d < Dim; ++d) xi[d] = node[d] * h;
+      const double w = s.weight(k);
+      EXPECT_GE(w, 0.0);
+      sum += w;
+      first += w * xi;
+      second += w * (xi - xp) * (xi - xp).transpose();
+      grad_sum += s.gradient(k);
+      x_grad += xi * s.gradient(k).transpose();
+    });
+    EXPECT_NEAR(sum, 1.0, kRoundOff);
+    EXPECT_LT((first - xp).norm(), kRoundOff * h);
+    EXPECT_LT(grad_sum.norm(), kRoundOff / h);
+    EXPECT_LT((x_grad - Mat<Dim>::Identity()).norm(), kRoundOff);
+    // APIC's D_p = sum_i w_ip (x_i - x_p)(x_i - x_p)^T = h^2 / 3 I for cubic B-splines.
+    EXPECT_LT((second - h * h / 3 * Mat<Dim>::Identity()).norm(), kRoundOff * h * h);
+  }
+}
+
+TYPED_TEST(Transfer, StencilSlotsAgreeWithNodeLookup) {
+  constexpr int Dim = TypeParam::value;
+  std::mt19937 rng(3);
+  const double h = 0.1;
+  BlockGrid<Dim> grid(h);
+  std::vector<Vec<Dim>> points;
+  for (int i = 0; i < 200; ++i) points.push_back(random_point<Dim>(rng, -2.0, 2.0));
+  for (const auto& x : points) grid.touch(Stencil<Dim>(x, h));
+  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  std::vector<int> seen(grid.nodes(), 0);
+  for (const auto& x : points) {
+    const Stencil<Dim> s(x, h);
+    grid.stencil_slots(s, slots);
+    int n = 0;
+    s.for_each([&](const Index<Dim>&, const Index<Dim>& node) {
+      const long slot = slots[n++];
+      ASSERT_EQ(slot, grid.slot_of(node));
+      ASSERT_GE(slot, 0);
+      EXPECT_EQ(grid.node_of(slot), node);
+    });
+  }
+  // Each active block holds 4^Dim distinct nodes: slots map back to distinct nodes.
+  for (std::size_t b = 0; b < grid.blocks(); ++b)
+    for (int l = 0; l < BlockGrid<Dim>::kNodes; ++l)
+      EXPECT_EQ(grid.slot_of(grid.node_of(static_cast<long>(b * BlockGrid<Dim>::kNodes + l))),
+                static_cast<long>(b * BlockGrid<Dim>::kNodes + l));
+}
+
+// Angular momentum about the origin of the grid and of APIC particles (the affine part adds
+// m_p (C_p D)^T's antisymmetric part, D = h^2/3 I): as an antisymmetric matrix sum m (x v^T - v x^T).
+template <int Dim>
+Mat<Dim> grid_angular_momentum(const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes) {
+  Mat<Dim> L = Mat<Dim>::Zero();
+  for (long i = 0; i < static_cast<long>(grid.nodes()); ++i) {
+    const Vec<Dim> x = grid.position(i);
+    L += x * nodes.momentum[i].transpose() - nodes.momentum[i] * x.transpose();
+  }
+  return L;
+}
+
+template <int Dim>
+Mat<Dim> particle_angular_momentum(const Particles<Dim>& P, double h) {
+  Mat<Dim> L = Mat<Dim>::Zero();
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Mat<Dim> affine = P.mass[p] * (P.C[p] * (h * h / 3)).transpose();
+    L += P.mass[p] * (P.x[p] * P.v[p].transpose() - P.v[p] * P.x[p].transpose()) + affine - affine.transpose();
+  }
+  return L;
+}
+
+TYPED_TEST(Transfer, ApicConservesMassLinearAndAngularMomentum) {
+  constexpr int Dim = TypeParam::value;
+  std::mt19937 rng(11);
+  const double h = 0.05;
+  Particles<Dim> P;
+  for (int i = 0; i < 300; ++i) {
+    P.add(random_point<Dim>(rng, 0.0, 0.6), random_point<Dim>(rng, -1.0, 1.0), 0.5 + (i % 7) * 0.1, 1e-4);
+    P.C.back() = Mat<Dim>::Random() * 3.0;
+  }
+  BlockGrid<Dim> grid(h);
+  touch_blocks(P, grid);
+  NodeFields<Dim> nodes;
+  nodes.reset(grid.nodes());
+  particles_to_grid(P, {}, {}, grid, nodes);
+
+  double mass = 0;
+  Vec<Dim> momentum = Vec<Dim>::Zero();
+  for (std::size_t i = 0; i < grid.nodes(); ++i) mass += nodes.mass[i], momentum += nodes.momentum[i];
+  EXPECT_NEAR(mass, P.total_mass(), kRoundOff * P.total_mass());
+  EXPECT_LT((momentum - P.momentum()).norm(), kRoundOff * P.total_mass());
+  const Mat<Dim> L_particles = particle_angular_momentum(P, h), L_grid = grid_angular_momentum(grid, nodes);
+  EXPECT_LT((L_grid - L_particles).norm(), kRoundOff * L_particles.norm());
+
+  // G2P of the grid velocities and P2G again: the same grid momentum and angular momentum.
+  for (std::size_t i = 0; i < grid.nodes(); ++i)
+    nodes.velocity[i] = nodes.mass[i] > 0 ? Vec<Dim>(nodes.momentum[i] / nodes.mass[i]) : Vec<Dim>::Zero();
+  std::vector<Mat<Dim>> grad_v;
+  grid_to_particles(P, grid, nodes, grad_v);
+  EXPECT_LT((P.momentum() - momentum).norm(), kRoundOff * P.total_mass());
+  EXPECT_LT((particle_angular_momentum(P, h) - L_grid).norm(), kRoundOff * L_grid.norm());
+  NodeFields<Dim> again;
+  again.reset(grid.nodes());
+  particles_to_grid(P, {}, {}, grid, again);
+  EXPECT_LT((grid_angular_momentum(grid, again) - L_grid).norm(), kRoundOff * L_grid.norm());
+}
+
+TYPED_TEST(Transfer, AffineVelocityFieldIsTransferredExactly) {
+  // APIC reproduces an affine field v(x) = v0 + A x: after P2G and G2P, v_p and C_p are exact.
+  constexpr int Dim = TypeParam::value;
+  std::mt19937 rng(5);
+  const double h = 0.02;
+  const Vec<Dim> v0 = Vec<Dim>::LinSpaced(0.3, 0.9);
+  const Mat<Dim> A = Mat<Dim>::Random();
+  Particles<Dim> P;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec<Dim> x = random_point<Dim>(rng, 0.0, Dim == 2 ? 0.3 : 0.12);
+    P.add(x, v0 + A * x, 1.0, 1.0);
+    P.C.back() = A;
+  }
+  BlockGrid<Dim> grid(h);
+  touch_blocks(P, grid);
+  NodeFields<Dim> nodes;
+  nodes.reset(grid.nodes());
+  particles_to_grid(P, {}, {}, grid, nodes);
+  for (std::size_t i = 0; i < grid.nodes(); ++i)
+    nodes.velocity[i] = nodes.mass[i] > 0 ? Vec<Dim>(nodes.momentum[i] / nodes.mass[i]) : Vec<Dim>::Zero();
+  std::vector<Mat<Dim>> grad_v;
+  const auto x = P.x;
+  grid_to_particles(P, grid, nodes, grad_v);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    EXPECT_LT((P.v[p] - (v0 + A * x[p])).norm(), 1e-10);
+    EXPECT_LT((P.C[p] - A).norm(), 1e-9);
+    EXPECT_LT((grad_v[p] - A).norm(), 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace suite::mpm2grid
