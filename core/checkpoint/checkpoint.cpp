@@ -185,6 +185,16 @@ std::optional<std::filesystem::path> latest(const mpi::Comm& comm, const std::fi
   return std::filesystem::path(found);
 }
 
+std::filesystem::path restart_path(const mpi::Comm& comm, const std::filesystem::path& dir, const std::string& prefix,
+                                   const std::string& which) {
+  if (which != "latest") return which;
+  const auto found = latest(comm, dir, prefix);
+  if (!found)
+    throw InputError(fmt::format("--restart latest: no checkpoint in '{}'; run without --restart to start from t = 0",
+                                 dir.string()));
+  return *found;
+}
+
 int discard_after(const std::filesystem::path& dir, const std::string& prefix, long long step) {
   int removed = 0;
   for (const auto& [s, path] : list(dir, prefix)) {

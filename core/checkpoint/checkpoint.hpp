@@ -87,6 +87,10 @@ std::optional<std::filesystem::path> latest(const std::filesystem::path& dir, co
 std::optional<std::filesystem::path> latest(const mpi::Comm& comm, const std::filesystem::path& dir,
                                             const std::string& prefix);
 // Deletes all but the newest `keep` checkpoints. Not collective: call on rank 0.
+// The checkpoint a `--restart WHICH` names: "latest" is the newest in `dir` (COLLECTIVE), anything
+// else a path. InputError when `dir` holds none, saying to run without --restart.
+std::filesystem::path restart_path(const mpi::Comm& comm, const std::filesystem::path& dir, const std::string& prefix,
+                                   const std::string& which);
 void prune(const std::filesystem::path& dir, const std::string& prefix, int keep);
 // Deletes the checkpoints with a step above `step`: the future of a run that is being started
 // again (step = -1 for a fresh start, the restart step otherwise), so that they can neither

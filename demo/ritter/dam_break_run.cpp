@@ -271,15 +271,7 @@ class DamBreakRun {
   }
 
   void resume(const std::string& which) {
-    std::filesystem::path path = which;
-    if (which == "latest") {
-      const auto found = checkpoint::latest(comm_, checkpoints_, "checkpoint");
-      if (!found)
-        throw InputError(
-            fmt::format("--restart latest: no checkpoint in '{}'; run without --restart to start from t = 0",
-                        checkpoints_.string()));
-      path = *found;
-    }
+    const auto path = checkpoint::restart_path(comm_, checkpoints_, "checkpoint", which);
     checkpoint::Reader r(comm_, path, kSolver, kCheckpointFormat);
     const auto bytes = r.read_bytes("progress");
     if (bytes.size() != sizeof(Progress))

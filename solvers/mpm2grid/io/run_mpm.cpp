@@ -204,15 +204,7 @@ class MpmRun {
   }
 
   void resume(const std::string& which) {
-    std::filesystem::path path = which;
-    if (which == "latest") {
-      const auto found = checkpoint::latest(comm_, checkpoints_, "checkpoint");
-      if (!found)
-        throw InputError(fmt::format(
-            "--restart latest: no checkpoint in '{}'; run without --restart to start from t = 0",
-            checkpoints_.string()));
-      path = *found;
-    }
+    const auto path = checkpoint::restart_path(comm_, checkpoints_, "checkpoint", which);
     checkpoint::Reader r(comm_, path, kSolver, kCheckpointFormat);
     if (r.read<double>("scene") != scene_.fingerprint())
       throw InputError(fmt::format("checkpoint '{}' was written for another scene (grid, materials, walls or time "
