@@ -108,7 +108,7 @@ StressInvariants kirchhoff_invariants(const Matrix<Dim>& tau) {
 }
 
 struct HenckyDruckerPrager {
-  // A default-constructed material has zero stiffness and is only a placeholder: build real
+  // A default-constructed material has zero stiffness and is not usable as is: build real
   // ones with from_young().
   double mu = 0;              // shear modulus, Pa
   double lambda = 0;          // first Lame parameter, Pa

@@ -32,7 +32,7 @@
 namespace suite::mpm2grid {
 
 struct WeaklyCompressibleWater {
-  // A default-constructed model has k = 0 (no stiffness) and is only a placeholder: set
+  // A default-constructed model has k = 0 (no stiffness) and is not usable as is: set
   // bulk_modulus, or build with make().
   double bulk_modulus = 0;  // k, Pa
   double gamma = 7;         // exponent, dimensionless
