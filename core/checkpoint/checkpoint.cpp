@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/io/h5_file.hpp"
+#include "core/log/logger.hpp"
 #include "core/run/build_info.hpp"
 
 namespace suite::checkpoint {
@@ -201,6 +202,14 @@ int discard_after(const std::filesystem::path& dir, const std::string& prefix, l
     if (s > step) removed += std::filesystem::remove(path) ? 1 : 0;
   }
   return removed;
+}
+
+void discard_after(const mpi::Comm& comm, const std::filesystem::path& dir, const std::string& prefix, long long step,
+                   Logger& log) {
+  if (!comm.is_root()) return;
+  const int removed = discard_after(dir, prefix, step);
+  if (removed > 0)
+    log.warn("removed {} checkpoint(s) after step {} left by an earlier run", removed, std::max(step, 0LL));
 }
 
 void prune(const std::filesystem::path& dir, const std::string& prefix, int keep) {

@@ -18,6 +18,10 @@
 
 #include "core/mpi/comm.hpp"
 
+namespace suite {
+class Logger;
+}
+
 namespace suite::io {
 class H5File;
 }
@@ -97,5 +101,9 @@ void prune(const std::filesystem::path& dir, const std::string& prefix, int keep
 // outrank the new run's checkpoints in prune() nor be taken by latest(). Returns how many.
 // Not collective: call on rank 0.
 int discard_after(const std::filesystem::path& dir, const std::string& prefix, long long step);
+// The same done by rank 0 for a run starting at `step`, with a warning in `log` naming how many
+// checkpoints of an earlier run were removed. Call on every rank; nothing is communicated.
+void discard_after(const mpi::Comm& comm, const std::filesystem::path& dir, const std::string& prefix, long long step,
+                   Logger& log);
 
 }  // namespace suite::checkpoint

@@ -127,7 +127,8 @@ class DamBreakRun {
     if (restart) {
       resume(*restart);
     } else {
-      discard_checkpoints_after(-1);  // a fresh start: checkpoints of an earlier run are stale
+      // a fresh start: checkpoints of an earlier run are stale
+      checkpoint::discard_after(comm_, checkpoints_, "checkpoint", -1, log_);
       start_outputs(false);
       write_fields(0);
     }
@@ -263,12 +264,6 @@ class DamBreakRun {
     log_.info("checkpoint {} written", path.filename().string());
   }
 
-  void discard_checkpoints_after(long long step) {
-    int removed = 0;
-    if (comm_.is_root()) removed = checkpoint::discard_after(checkpoints_, "checkpoint", step);
-    if (removed > 0)
-      log_.warn("removed {} checkpoint(s) after step {} left by an earlier run", removed, std::max(step, 0LL));
-  }
 
   void resume(const std::string& which) {
     const auto path = checkpoint::restart_path(comm_, checkpoints_, "checkpoint", which);
@@ -288,7 +283,8 @@ class DamBreakRun {
     if (range != std::vector<long long>{block_.first, block_.count})
       throw LibraryError("checkpoint block layout differs from this run's");
     record_.extra()["restarted_from"] = path.string();
-    discard_checkpoints_after(p_.step);  // later ones belong to the run being replaced
+    // later ones belong to the run being replaced
+    checkpoint::discard_after(comm_, checkpoints_, "checkpoint", p_.step, log_);
     log_.info("restarting from {} at step {} (t = {} s)", path.filename().string(), p_.step, time_of(p_.step));
     start_outputs(true);
   }

@@ -83,7 +83,8 @@ class MpmRun {
     if (restart) {
       resume(*restart);
     } else {
-      discard_checkpoints_after(-1);  // a fresh start: checkpoints of an earlier run are stale
+      // a fresh start: checkpoints of an earlier run are stale
+      checkpoint::discard_after(comm_, checkpoints_, "checkpoint", -1, log_);
       seed_particles(scene_, sim_);
       p_.next_sample = scene_.time.series;
       p_.next_output = scene_.time.output;
@@ -196,12 +197,6 @@ class MpmRun {
     log_.info("checkpoint {} written", path.filename().string());
   }
 
-  void discard_checkpoints_after(long long step) {
-    int removed = 0;
-    if (comm_.is_root()) removed = checkpoint::discard_after(checkpoints_, "checkpoint", step);
-    if (removed > 0)
-      log_.warn("removed {} checkpoint(s) after step {} left by an earlier run", removed, std::max(step, 0LL));
-  }
 
   void resume(const std::string& which) {
     const auto path = checkpoint::restart_path(comm_, checkpoints_, "checkpoint", which);
@@ -212,7 +207,8 @@ class MpmRun {
                                    path.string()));
     read_state(r, sim_, p_);
     record_.extra()["restarted_from"] = path.string();
-    discard_checkpoints_after(sim_.steps());  // later ones belong to the run being replaced
+    // later ones belong to the run being replaced
+    checkpoint::discard_after(comm_, checkpoints_, "checkpoint", sim_.steps(), log_);
     log_.info("restarting from {} at step {} (t = {} s)", path.filename().string(), sim_.steps(), sim_.time());
     start_outputs(true);
   }
