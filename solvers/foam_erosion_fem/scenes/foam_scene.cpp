@@ -62,8 +62,6 @@ CouplingSettings read_coupling(const config::Section& s) {
   CouplingSettings c;
   c.interval = s.quantity("interval", "s", Range::positive());
   c.morphological_factor = s.number("morphological_factor", 1.0, Range::positive());
-  c.min_element_fraction = s.number("min_element_fraction", 0.2, Range::between(0.01, 0.9));
-  c.projection = s.choice("projection", {"lumped", "consistent"}, "lumped");
   return c;
 }
 

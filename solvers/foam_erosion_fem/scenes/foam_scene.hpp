@@ -14,7 +14,7 @@
 //   flow:      {turbulence: laminar | kEpsilon, water: {density, viscosity},
 //               air: {density, viscosity}, surface_tension}
 //   time:      {end, max_courant, max_alpha_courant, max_dt, fixed_dt, write_interval}
-//   coupling:  {interval, morphological_factor, min_element_fraction, projection}
+//   coupling:  {interval, morphological_factor}
 //   run:       {ranks, decomposition: simple | hierarchical}
 //
 // Coordinates of the case: x downstream from the inlet, y up (levels on the dam's datum, so the
@@ -70,8 +70,6 @@ struct SoilErosion {
 struct CouplingSettings {
   double interval = 0.0;              // flow time between erosion steps, s
   double morphological_factor = 1.0;  // erosion time = factor x flow time
-  double min_element_fraction = 0.2;  // minimum FEM element length / cell size
-  std::string projection = "lumped";  // face -> node L2 projection: lumped | consistent
 };
 
 struct RunSettings {
