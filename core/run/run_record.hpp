@@ -41,6 +41,8 @@ class Summary {
   void set(const std::string& key, double value, const std::string& unit = "");
   void set(const std::string& key, const std::string& value);
   void set(const std::string& key, bool value);
+  // A string literal would otherwise convert to bool, not to std::string.
+  void set(const std::string& key, const char* value) { set(key, std::string(value)); }
   const nlohmann::json& json() const { return json_; }
   // Not collective: call on one rank. Atomic write.
   void write(const std::filesystem::path& path) const;

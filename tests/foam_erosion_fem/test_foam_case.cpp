@@ -1,5 +1,5 @@
 // The OpenFOAM case of a scene, checked with the real OpenFOAM programs (blockMesh, checkMesh,
-// topoSet, setFields) and read back with the coupling's own reader.
+// subsetMesh, topoSet, setFields) and read back with the coupling's own reader.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,11 +8,14 @@
 #include <set>
 
 #include "core/config/config.hpp"
+#include "core/mpi/comm.hpp"
+#include "solvers/foam_erosion_fem/case/dam_cells.hpp"
 #include "solvers/foam_erosion_fem/case/section_layout.hpp"
 #include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
 #include "solvers/foam_erosion_fem/io/prepare_case.hpp"
 #include "solvers/foam_erosion_fem/runner/foam_runner.hpp"
 #include "solvers/foam_erosion_fem/scenes/foam_scene.hpp"
+#include "tests/support/test_dirs.hpp"
 
 namespace fs = std::filesystem;
 using namespace suite::foam_erosion;
@@ -28,11 +31,17 @@ FoamScene scene_with(const std::vector<std::string>& overrides = {}) {
   return s;
 }
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("foam_case_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+// This test's own scratch folder (tests/support/test_dirs.hpp), emptied first.
+fs::path fresh_dir() { return suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF)); }
+
+double distance_to_curve(const SectionLayout& L, const Eigen::Vector2d& p) {
+  double nearest = 1e300;
+  for (std::size_t i = 0; i + 1 < L.dam_nodes.size(); ++i) {
+    const Eigen::Vector2d a = L.dam_nodes[i], b = L.dam_nodes[i + 1];
+    const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    nearest = std::min(nearest, (a + t * (b - a) - p).norm());
+  }
+  return nearest;
 }
 
 }  // namespace
@@ -55,50 +64,82 @@ TEST(SectionLayout, NodesFollowTheTrapezoidWithinTheCellSize) {
                                       s.dam.foundation + (L.x_toe_section - p.x()) / s.dam.downstream_slope});
     EXPECT_NEAR(p.y(), expected, 1e-12);
   }
-  auto has_node_at = [&](double x) {
-    return std::any_of(L.dam_nodes.begin(), L.dam_nodes.end(), [&](const auto& p) { return std::abs(p.x() - x) < 1e-12; });
+  // The crest edge and the toe, where discharge is measured, are mesh lines: ends of x blocks.
+  auto is_block_edge = [&](double x) {
+    return std::any_of(L.x_blocks.begin(), L.x_blocks.end(), [&](const auto& b) { return std::abs(b.x1 - x) < 1e-12; });
   };
-  EXPECT_TRUE(has_node_at(L.x_crest_section));
-  EXPECT_TRUE(has_node_at(L.x_toe_section));
+  EXPECT_TRUE(is_block_edge(L.x_crest_section));
+  EXPECT_TRUE(is_block_edge(L.x_toe_section));
+  for (std::size_t i = 0; i + 1 < L.x_blocks.size(); ++i) EXPECT_EQ(L.x_blocks[i].x1, L.x_blocks[i + 1].x0);
+  EXPECT_EQ(L.x_blocks.front().x0, L.x_inlet);
+  EXPECT_EQ(L.x_blocks.back().x1, L.x_outlet);
   EXPECT_NEAR(L.x_outlet - L.x_toe_section, s.domain.downstream_length, 1e-12);
+  // The trapezoid's area, (crest width + base width) / 2 x height.
+  const double base = s.dam.crest_width + (s.dam.upstream_slope + s.dam.downstream_slope) * s.dam.height;
+  EXPECT_NEAR(L.dam_area(), 0.5 * (s.dam.crest_width + base) * s.dam.height, 1e-12);
 }
 
-// blockMesh builds the mesh the layout describes, checkMesh passes it, and every dam face is one
-// FEM element: its two front points are the element's two nodes, in node order.
-TEST(FoamCase, MeshMatchesTheLayoutAndDamFacesAreFemElements) {
+// blockMesh builds the background the layout describes; subsetMesh cuts out exactly the cells
+// whose centre is inside the dam (so the cut area is the dam's area to within half a cell along
+// its perimeter); checkMesh passes the result; the staircase dam faces hug the FEM curve.
+TEST(FoamCase, StaircaseMeshCutsTheDamOutOfTheBackground) {
   const auto s = scene_with({"mesh.cell_size=0.02 m", "mesh.far_cell_size=0.06 m"});
-  const auto dir = fresh_dir("mesh");
+  const auto dir = fresh_dir();
   FoamRunner runner(dir / "case", dir / "logs");
   const auto prepared = prepare_case(s, runner, s.time.end);
   const auto& L = prepared.layout;
   const auto mesh = PolyMesh::read(dir / "case/constant/polyMesh");
-  EXPECT_EQ(mesh.cells(), L.cells());
+  EXPECT_EQ(mesh.cells(), prepared.mesh.cells);
+  EXPECT_LT(prepared.mesh.cells, prepared.mesh.background_cells);
 
+  // Every flow cell is outside the dam; the cut cells (all in the uniform dam blocks) add up to
+  // the dam's area within half a cell along its perimeter.
+  const auto centres = mesh.cell_centres();
+  for (const auto& c : centres) EXPECT_FALSE(inside_dam(L, {c.x(), c.y()})) << c.transpose();
+  // subsetMesh keeps the background order: flow cell j is background cell fluid[j] (the re-mesh
+  // relies on it to find the cells erosion opens).
+  ASSERT_EQ(centres.size(), prepared.mesh.fluid.size());
+  for (std::size_t j = 0; j < centres.size(); ++j)
+    ASSERT_LT((centres[j] - prepared.mesh.background_centres[static_cast<std::size_t>(prepared.mesh.fluid[j])]).norm(),
+              1e-12)
+        << "flow cell " << j;
+  const auto& dam_block = L.x_blocks[1];
+  const double dx = (dam_block.x1 - dam_block.x0) / dam_block.cells, dy = (L.top - L.floor) / L.vertical_cells;
+  const double cut_area = static_cast<double>(prepared.mesh.background_cells - prepared.mesh.cells) * dx * dy;
+  double perimeter = 0.0;
+  for (std::size_t i = 0; i + 1 < L.dam_nodes.size(); ++i) perimeter += (L.dam_nodes[i + 1] - L.dam_nodes[i]).norm();
+  EXPECT_NEAR(cut_area, L.dam_area(), 0.5 * perimeter * std::max(dx, dy));
+
+  // The dam patch: faces within a cell of the curve, outward normals (out of the flow, into the
+  // dam) axis-aligned, a staircase about as long as the curve and at most its L1 length.
   const auto& dam = mesh.patch("dam");
-  const int elements = static_cast<int>(L.dam_nodes.size()) - 1;
-  ASSERT_EQ(dam.faces, elements);
-  for (int e = 0; e < elements; ++e) {
-    std::vector<Eigen::Vector2d> front;
-    for (int p : mesh.faces[static_cast<std::size_t>(dam.start_face + e)])
-      if (std::abs(mesh.points[static_cast<std::size_t>(p)].z()) < 1e-12)
-        front.emplace_back(mesh.points[static_cast<std::size_t>(p)].x(), mesh.points[static_cast<std::size_t>(p)].y());
-    ASSERT_EQ(front.size(), 2u);
-    std::sort(front.begin(), front.end(), [](const auto& a, const auto& b) { return a.x() < b.x(); });
-    EXPECT_LT((front[0] - L.dam_nodes[static_cast<std::size_t>(e)]).norm(), 1e-9) << "face " << e;
-    EXPECT_LT((front[1] - L.dam_nodes[static_cast<std::size_t>(e) + 1]).norm(), 1e-9) << "face " << e;
+  ASSERT_EQ(dam.faces, prepared.mesh.dam_faces);
+  double stair_length = 0.0, l1_length = 0.0;
+  for (std::size_t i = 0; i + 1 < L.dam_nodes.size(); ++i)
+    l1_length += (L.dam_nodes[i + 1] - L.dam_nodes[i]).lpNorm<1>();
+  for (int f = dam.start_face; f < dam.start_face + dam.faces; ++f) {
+    const Eigen::Vector3d c = mesh.face_centre(f), n = mesh.face_area(f).normalized();
+    const double nearest = distance_to_curve(L, {c.x(), c.y()});
+    EXPECT_LE(nearest, std::max(dx, dy)) << "dam face " << f;
+    EXPECT_NEAR(std::abs(n.x()) + std::abs(n.y()), 1.0, 1e-12);
+    // Half a cell along the normal is the centre of the cut cell behind the face: in the dam.
+    // (A centre on the curve itself may fall either way.)
+    const double half = 0.5 * (std::abs(n.x()) * dx + std::abs(n.y()) * dy);
+    const Eigen::Vector2d behind = Eigen::Vector2d(c.x(), c.y()) + half * Eigen::Vector2d(n.x(), n.y());
+    if (distance_to_curve(L, behind) > 1e-9) {
+      EXPECT_TRUE(inside_dam(L, behind))
+          << "dam face " << f << " at " << c.transpose() << " normal " << n.transpose() << " points out of the dam";
+    }
+    stair_length += mesh.face_area(f).norm() / L.thickness;
   }
-  // A point field's dam values come in meshPoints order: two points (front, back) per node.
-  const auto order = mesh.patch_mesh_points("dam");
-  EXPECT_EQ(order.size(), 2 * L.dam_nodes.size());
-  EXPECT_EQ(std::set<int>(order.begin(), order.end()).size(), order.size());
+  EXPECT_GT(stair_length, 0.9 * perimeter);
+  EXPECT_LT(stair_length, 1.1 * l1_length);
 
   // The inlet faces under the reservoir level start wet (setFields), the others dry.
   const auto& inlet = mesh.patch("inlet");
   const auto alpha = read_patch_value(dir / "case/0/alpha.water", "inlet", 1, static_cast<std::size_t>(inlet.faces));
   for (int f = 0; f < inlet.faces; ++f) {
-    double yc = 0;
-    const auto& face = mesh.faces[static_cast<std::size_t>(inlet.start_face + f)];
-    for (int p : face) yc += mesh.points[static_cast<std::size_t>(p)].y() / static_cast<double>(face.size());
+    const double yc = mesh.face_centre(inlet.start_face + f).y();
     EXPECT_EQ(alpha.at(static_cast<std::size_t>(f)), yc < s.initial_level ? 1.0 : 0.0) << "inlet face at y = " << yc;
   }
   // Internal field: one value per cell.
@@ -107,31 +148,9 @@ TEST(FoamCase, MeshMatchesTheLayoutAndDamFacesAreFemElements) {
   fs::remove_all(dir);
 }
 
-// The dam patch entry of a point field can be rewritten (the erosion step's displacement) and
-// read back, and the rest of the file still reads.
-TEST(FoamCase, PatchEntryRewriteRoundTrips) {
-  const auto s = scene_with({"mesh.cell_size=0.02 m"});
-  const auto dir = fresh_dir("patch");
-  FoamRunner runner(dir / "case", dir / "logs");
-  prepare_case(s, runner, s.time.end);
-  const auto mesh = PolyMesh::read(dir / "case/constant/polyMesh");
-  const auto points = mesh.patch_mesh_points("dam");
-  std::string entry = "        type            fixedValue;\n        value           nonuniform List<vector> " +
-                      std::to_string(points.size()) + "\n(\n";
-  for (std::size_t i = 0; i < points.size(); ++i) entry += "(0 " + std::to_string(-1e-3 * double(i)) + " 0)\n";
-  entry += ");\n";
-  const auto file = dir / "case/0/pointDisplacement";
-  replace_patch_entry(file, "dam", entry);
-  const auto back = read_patch_value(file, "dam", 3, points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) EXPECT_DOUBLE_EQ(back.at(i, 1), -1e-3 * double(i));
-  const auto floor = read_patch_value(file, "floor", 3, 4);
-  EXPECT_EQ(floor.at(3, 0), 0.0);
-  fs::remove_all(dir);
-}
-
 // A failing OpenFOAM program is reported with its name, the reason, its log and the case.
 TEST(FoamRunner, FailureNamesProgramLogAndCase) {
-  const auto dir = fresh_dir("fail");
+  const auto dir = fresh_dir();
   fs::create_directories(dir / "case/system");
   FoamRunner runner(dir / "case", dir / "logs");
   try {

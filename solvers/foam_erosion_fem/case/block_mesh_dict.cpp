@@ -2,78 +2,61 @@
 
 #include <fmt/format.h>
 
+#include <array>
+
 #include "solvers/foam_erosion_fem/case/foam_file.hpp"
 
 namespace suite::foam_erosion {
 
 namespace {
 
-struct Column {
-  int cells;
-  double expansion;
-};
-
 // Vertices of station i: 4i bottom-front, 4i+1 top-front, 4i+2 bottom-back, 4i+3 top-back.
-std::string hex(int i, const Column& c, int ny, double grading) {
-  const int a = 4 * i, b = 4 * (i + 1);
-  return fmt::format("    hex ({} {} {} {} {} {} {} {}) ({} {} 1) simpleGrading ({} {} 1)\n", a, b, b + 1, a + 1,
-                     a + 2, b + 2, b + 3, a + 3, c.cells, ny, foam_number(c.expansion), foam_number(grading));
+std::string faces_of(int blocks, int (*corner)(int, int), int per_block) {
+  std::string out;
+  for (int i = 0; i < blocks; ++i)
+    for (int k = 0; k < per_block; ++k) {
+      const int q = 4 * i;
+      out += fmt::format("            ({} {} {} {})\n", corner(q, 4 * k), corner(q, 4 * k + 1), corner(q, 4 * k + 2),
+                         corner(q, 4 * k + 3));
+    }
+  return out;
 }
 
-std::string bottom_face(int i) {
-  const int a = 4 * i, b = 4 * (i + 1);
-  return fmt::format("            ({} {} {} {})\n", a, a + 2, b + 2, b);
+std::string patch(const std::string& name, const std::string& type, const std::string& faces) {
+  return fmt::format("    {}\n    {{\n        type {};\n        faces\n        (\n{}        );\n    }}\n", name, type,
+                     faces);
 }
 
 }  // namespace
 
 std::string block_mesh_dict(const SectionLayout& L) {
-  // Stations: inlet, the dam nodes (upstream toe .. downstream toe), outlet.
-  std::vector<Eigen::Vector2d> bottom;
-  bottom.emplace_back(L.x_inlet, L.floor);
-  bottom.insert(bottom.end(), L.dam_nodes.begin(), L.dam_nodes.end());
-  bottom.emplace_back(L.x_outlet, L.floor);
-  const int stations = static_cast<int>(bottom.size());
-  const int last_block = stations - 2;
-
+  const int blocks = static_cast<int>(L.x_blocks.size());
   std::string out = foam_header("dictionary", "blockMeshDict", "system");
   out += "scale 1;\n\nvertices\n(\n";
-  for (const auto& p : bottom) {
-    const std::string x = foam_number(p.x()), yb = foam_number(p.y()), yt = foam_number(L.top),
-                      z = foam_number(L.thickness);
+  const std::string yb = foam_number(L.floor), yt = foam_number(L.top), z = foam_number(L.thickness);
+  for (int i = 0; i <= blocks; ++i) {
+    const std::string x = foam_number(i < blocks ? L.x_blocks[static_cast<std::size_t>(i)].x0 : L.x_outlet);
     out += fmt::format("    ({} {} 0) ({} {} 0) ({} {} {}) ({} {} {})\n", x, yb, x, yt, x, yb, z, x, yt, z);
   }
   out += ");\n\nblocks\n(\n";
-  for (int i = 0; i < stations - 1; ++i) {
-    Column c{1, 1.0};
-    if (i == 0) c = {L.upstream.cells, L.upstream.expansion};
-    if (i == last_block) c = {L.downstream.cells, L.downstream.expansion};
-    out += hex(i, c, L.vertical_cells, L.vertical_grading);
+  for (int i = 0; i < blocks; ++i) {
+    const auto& b = L.x_blocks[static_cast<std::size_t>(i)];
+    const int a = 4 * i, c = 4 * (i + 1);
+    out += fmt::format("    hex ({} {} {} {} {} {} {} {}) ({} {} 1) simpleGrading ({} {} 1)\n", a, c, c + 1, a + 1,
+                       a + 2, c + 2, c + 3, a + 3, b.cells, L.vertical_cells, foam_number(b.expansion),
+                       foam_number(L.vertical_grading));
   }
   out += ");\n\nedges\n(\n);\n\nboundary\n(\n";
-  out += fmt::format("    inlet\n    {{\n        type patch;\n        faces ((0 1 3 2));\n    }}\n");
-  const int o = 4 * (stations - 1);
-  out += fmt::format("    outlet\n    {{\n        type patch;\n        faces (({} {} {} {}));\n    }}\n", o, o + 2,
-                     o + 3, o + 1);
-  out += "    atmosphere\n    {\n        type patch;\n        faces\n        (\n";
-  for (int i = 0; i < stations - 1; ++i) {
-    const int a = 4 * i, b = 4 * (i + 1);
-    out += fmt::format("            ({} {} {} {})\n", a + 1, b + 1, b + 3, a + 3);
-  }
-  out += "        );\n    }\n";
-  out += "    floor\n    {\n        type wall;\n        faces\n        (\n";
-  out += bottom_face(0) + bottom_face(last_block);
-  out += "        );\n    }\n";
-  out += "    dam\n    {\n        type wall;\n        faces\n        (\n";
-  for (int i = 1; i < last_block; ++i) out += bottom_face(i);
-  out += "        );\n    }\n";
-  out += "    frontAndBack\n    {\n        type empty;\n        faces\n        (\n";
-  for (int i = 0; i < stations - 1; ++i) {
-    const int a = 4 * i, b = 4 * (i + 1);
-    out += fmt::format("            ({} {} {} {})\n", a, a + 1, b + 1, b);
-    out += fmt::format("            ({} {} {} {})\n", a + 2, b + 2, b + 3, a + 3);
-  }
-  out += "        );\n    }\n);\n\nmergePatchPairs\n(\n);\n";
+  const int o = 4 * blocks;
+  out += patch("inlet", "patch", "            (0 1 3 2)\n");
+  out += patch("outlet", "patch", fmt::format("            ({} {} {} {})\n", o, o + 2, o + 3, o + 1));
+  // Per block: top (a+1 c+1 c+3 a+3), bottom (a a+2 c+2 c), front (a a+1 c+1 c), back (a+2 c+2 c+3 a+3).
+  out += patch("atmosphere", "patch", faces_of(blocks, [](int q, int k) { return q + std::array{1, 5, 7, 3}[k]; }, 1));
+  out += patch("floor", "wall", faces_of(blocks, [](int q, int k) { return q + std::array{0, 2, 6, 4}[k]; }, 1));
+  out += patch("dam", "wall", "");
+  out += patch("frontAndBack", "empty",
+               faces_of(blocks, [](int q, int k) { return q + std::array{0, 1, 5, 4, 2, 6, 7, 3}[k]; }, 2));
+  out += ");\n\nmergePatchPairs\n(\n);\n";
   return out;
 }
 

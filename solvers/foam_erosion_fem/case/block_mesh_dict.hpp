@@ -1,12 +1,13 @@
 #pragma once
-// system/blockMeshDict for a SectionLayout: one hex block per column, every column with the same
-// vertical cell count and grading so neighbouring blocks share their points exactly. Blocks are
-// listed from the inlet to the outlet, so blockMesh numbers the cells of each column after those
-// of the column upstream of it and every face between two columns has its normal in +x (the
-// discharge sections rely on this).
+// system/blockMeshDict of the background mesh of a SectionLayout: one hex block per x block
+// (inlet to outlet), every block with the same vertical cells and grading so neighbouring blocks
+// share their points exactly. All cells are axis-aligned rectangles. blockMesh numbers the cells
+// of each block after those of the block upstream of it, row by row, so every face between two
+// cells of a row has its normal in +x (the discharge sections rely on this; subsetMesh keeps the
+// order).
 //
-// Patches: inlet, outlet, atmosphere (top), floor (non-erodible bottom), dam (the erodible
-// surface, one face per FEM element, in node order), frontAndBack (empty).
+// Patches: inlet, outlet, atmosphere (top), floor (non-erodible bottom), dam (empty here: it
+// receives the faces subsetMesh exposes when it removes the dam's cells), frontAndBack (empty).
 #include <string>
 
 #include "solvers/foam_erosion_fem/case/section_layout.hpp"

@@ -113,18 +113,9 @@ void write_fields(const FoamScene& s, const SectionLayout& L, const fs::path& di
                                 {"floor", wall("nutkWallFunction", 0.0)},
                                 {"dam", wall("nutkWallFunction", 0.0)}}));
   }
-  // Mesh motion: the dam patch gets the FEM nodes' displacement from the initial surface; every
-  // other boundary stays where it is (the toes are fixed nodes, so no corner cell is sheared).
-  const std::string still = "        type            fixedValue;\n        value           uniform (0 0 0);\n";
-  write_case_file(dir, "0/pointDisplacement",
-                  foam_header("pointVectorField", "pointDisplacement", "0") +
-                      "dimensions      [0 1 0 0 0 0 0];\n\ninternalField   uniform (0 0 0);\n\n" +
-                      boundary_field({{"inlet", still},
-                                      {"outlet", still},
-                                      {"atmosphere", still},
-                                      {"floor", still},
-                                      {"dam", still}}));
 }
+
+}  // namespace
 
 void write_constant(const FoamScene& s, const fs::path& dir) {
   write_case_file(dir, "constant/g",
@@ -143,18 +134,9 @@ void write_constant(const FoamScene& s, const fs::path& dir) {
                       (turbulent(s) ? "simulationType  RAS;\n\nRAS\n{\n    RASModel        kEpsilon;\n    turbulence      on;\n"
                                       "    printCoeffs     on;\n}\n"
                                     : "simulationType  laminar;\n"));
-  const bool erodes = s.soil.kd > 0.0;
-  write_case_file(dir, "constant/dynamicMeshDict",
-                  foam_header("dictionary", "dynamicMeshDict", "constant") +
-                      (erodes ? "dynamicFvMesh   dynamicMotionSolverFvMesh;\n"
-                                "motionSolverLibs (\"libfvMotionSolvers.so\");\n"
-                                "motionSolver    displacementLaplacian;\n\n"
-                                "displacementLaplacianCoeffs\n{\n    diffusivity     inverseDistance (dam);\n}\n"
-                              : "dynamicFvMesh   staticFvMesh;\n"));
 }
 
-void write_system(const FoamScene& s, const SectionLayout& L, const fs::path& dir) {
-  write_case_file(dir, "system/blockMeshDict", block_mesh_dict(L));
+void write_numerics(const fs::path& dir) {
   write_case_file(dir, "system/fvSchemes",
                   foam_header("dictionary", "fvSchemes", "system") +
                       "ddtSchemes\n{\n    default         Euler;\n}\n\n"
@@ -184,11 +166,17 @@ void write_system(const FoamScene& s, const SectionLayout& L, const fs::path& di
                       "    p_rghFinal\n    {\n        $p_rgh;\n        relTol          0;\n    }\n"
                       "    \"(U|k|epsilon).*\"\n    {\n        solver          smoothSolver;\n"
                       "        smoother        symGaussSeidel;\n        tolerance       1e-6;\n        relTol          0;\n    }\n"
-                      "    \"cellDisplacement.*\"\n    {\n        solver          GAMG;\n        smoother        GaussSeidel;\n"
-                      "        tolerance       1e-8;\n        relTol          0;\n    }\n}\n\n"
+                      "}\n\n"
                       "PIMPLE\n{\n    momentumPredictor no;\n    nOuterCorrectors 1;\n    nCorrectors     3;\n"
-                      "    nNonOrthogonalCorrectors 0;\n    correctPhi      yes;\n    moveMeshOuterCorrectors no;\n}\n\n"
+                      "    nNonOrthogonalCorrectors 0;\n}\n\n"
                       "relaxationFactors\n{\n    equations\n    {\n        \".*\" 1;\n    }\n}\n");
+}
+
+namespace {
+
+void write_system(const FoamScene& s, const SectionLayout& L, const fs::path& dir) {
+  write_case_file(dir, "system/blockMeshDict", block_mesh_dict(L));
+  write_numerics(dir);
 
   // The reservoir (and tailwater) as water at t = 0: cells whose centre lies below the level,
   // upstream of the crest (downstream of it for the tailwater).
@@ -288,12 +276,16 @@ void write_control_dict(const FoamScene& s, const fs::path& dir, double end_time
                       functions);
 }
 
-void write_case(const FoamScene& scene, const SectionLayout& layout, const fs::path& case_dir, double end_time) {
+void write_case_setup(const FoamScene& scene, const SectionLayout& layout, const fs::path& case_dir,
+                      double end_time) {
   fs::create_directories(case_dir);
-  write_fields(scene, layout, case_dir);
   write_constant(scene, case_dir);
   write_system(scene, layout, case_dir);
   write_control_dict(scene, case_dir, end_time);
+}
+
+void write_initial_fields(const FoamScene& scene, const SectionLayout& layout, const fs::path& case_dir) {
+  write_fields(scene, layout, case_dir);
 }
 
 }  // namespace suite::foam_erosion

@@ -7,14 +7,18 @@ namespace suite::foam_erosion {
 
 namespace {
 
-// Geometric cells over `length` from size `near` (at the dam) to about `far`: the count that
+// Geometric cells over [x0, x1] from size `near` (at the dam) to about `far`: the count that
 // keeps the mean size, and the expansion blockMesh needs (last / first cell).
-FloorSegment graded(double length, double near, double far, bool grows_in_plus_x) {
-  FloorSegment s;
-  s.cells = std::max(1, static_cast<int>(std::ceil(length / (0.5 * (near + far)))));
+GradedSegment graded(double x0, double x1, double near, double far, bool grows_in_plus_x) {
+  GradedSegment s{x0, x1};
+  s.cells = std::max(1, static_cast<int>(std::ceil((x1 - x0) / (0.5 * (near + far)))));
   const double ratio = s.cells > 1 ? far / near : 1.0;
   s.expansion = grows_in_plus_x ? ratio : 1.0 / ratio;
   return s;
+}
+
+GradedSegment uniform(double x0, double x1, double h) {
+  return {x0, x1, std::max(1, static_cast<int>(std::ceil((x1 - x0) / h - 1e-9))), 1.0};
 }
 
 // Appends the nodes of the straight face a -> b (a excluded) cut into elements <= h.
@@ -50,9 +54,12 @@ SectionLayout SectionLayout::initial(const FoamScene& scene) {
   append_face(L.dam_nodes, crest_up, crest_down, h);
   append_face(L.dam_nodes, crest_down, toe_down, h);
 
-  L.upstream = graded(scene.domain.upstream_length, h, scene.mesh.far_cell_size, false);
-  L.downstream = graded(scene.domain.downstream_length, h, scene.mesh.far_cell_size, true);
-  L.vertical_cells = std::max(2, static_cast<int>(std::ceil((L.top - dam.crest()) / h - 1e-9)));
+  const double far = scene.mesh.far_cell_size;
+  if (x_toe_up > 0.0) L.x_blocks.push_back(graded(L.x_inlet, x_toe_up, h, far, false));
+  L.x_blocks.push_back(uniform(x_toe_up, x_crest_down, h));
+  L.x_blocks.push_back(uniform(x_crest_down, x_toe_down, h));
+  if (L.x_outlet > x_toe_down) L.x_blocks.push_back(graded(x_toe_down, L.x_outlet, h, far, true));
+  L.vertical_cells = std::max(2, static_cast<int>(std::ceil((L.top - L.floor) / h - 1e-9)));
   L.vertical_grading = scene.mesh.vertical_grading;
   return L;
 }
@@ -63,9 +70,22 @@ SectionLayout SectionLayout::with_dam_nodes(std::vector<Eigen::Vector2d> nodes) 
   return L;
 }
 
-long long SectionLayout::cells() const {
-  const long long columns_x = upstream.cells + downstream.cells + static_cast<long long>(dam_nodes.size()) - 1;
-  return columns_x * vertical_cells;
+long long SectionLayout::background_cells() const {
+  long long nx = 0;
+  for (const auto& b : x_blocks) nx += b.cells;
+  return nx * vertical_cells;
+}
+
+double SectionLayout::dam_area() const {
+  // Shoelace over the dam nodes closed along the floor.
+  double twice = 0.0;
+  const std::size_t n = dam_nodes.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& a = dam_nodes[i];
+    const auto& b = dam_nodes[(i + 1) % n];
+    twice += (a.x() - b.x()) * (a.y() + b.y() - 2.0 * floor);
+  }
+  return 0.5 * std::abs(twice);
 }
 
 }  // namespace suite::foam_erosion

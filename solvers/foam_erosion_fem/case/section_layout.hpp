@@ -1,13 +1,22 @@
 #pragma once
-// The 2D cross-section the CFD mesh is built on: a row of vertical columns from the bottom (floor
-// or dam surface) to the flat top of the domain, one cell thick in z.
+// The 2D cross-section the CFD mesh is built on, and the dam surface the FEM erosion moves.
 //
-//   inlet |-- upstream floor --|-- dam: one column per surface element --|-- downstream floor --| outlet
+// The flow mesh is a Cartesian ("staircase") mesh: a background of axis-aligned rectangles,
+// one cell thick in z, from which the cells whose centre lies inside the dam are removed
+// (case/dam_cells.hpp); the faces they expose become the `dam` patch. Its cells are never
+// tilted, because Debian's OpenFOAM v1912 reconstructs cell velocities wrongly on cells whose
+// faces are not axis-aligned (docs/foam_erosion_fem.md), and interFoam then blows up.
 //
-// The dam surface nodes are the FEM erosion nodes and the mesh points of the `dam` patch, so the
-// shear on a dam face is the shear on one FEM element and a node displacement is a mesh point
-// displacement, with no interpolation between the two. The floor columns grow geometrically from
-// the cell size at the dam to the far cell size at the inlet and outlet.
+//   x:  inlet |-- upstream: graded --|-- toe..crest edge --|-- crest edge..toe --|-- downstream: graded --| outlet
+//   y:  floor .. top, vertical_cells cells (graded by vertical_grading)
+//
+// The two middle x blocks have uniform cells of mesh.cell_size (rounded so the downstream crest
+// edge and the downstream toe are mesh lines, where the discharge sections are); the outer ones
+// grow geometrically to far_cell_size at the inlet and outlet.
+//
+// The dam surface is the FEM curve `dam_nodes` (elements no longer than the cell size), kept
+// apart from the mesh: the wall shear of the staircase faces is mapped onto its elements
+// (coupling/wall_shear.hpp) and, after erosion, the background is cut again along the new curve.
 #include <Eigen/Core>
 #include <vector>
 
@@ -15,19 +24,21 @@
 
 namespace suite::foam_erosion {
 
-struct FloorSegment {
+struct GradedSegment {
+  double x0 = 0.0, x1 = 0.0;
   int cells = 1;
   double expansion = 1.0;  // last cell / first cell, in +x (blockMesh's simpleGrading)
 };
 
 struct SectionLayout {
-  std::vector<Eigen::Vector2d> dam_nodes;  // upstream toe .. downstream toe, x increasing
+  std::vector<Eigen::Vector2d> dam_nodes;  // upstream toe .. downstream toe, x increasing at first
   double x_inlet = 0.0, x_outlet = 0.0;
   double floor = 0.0, top = 0.0;  // levels, m
   double thickness = 0.0;         // z extent of the one-cell slab, m
-  FloorSegment upstream, downstream;
+  // The x blocks of the background mesh, inlet to outlet.
+  std::vector<GradedSegment> x_blocks;
   int vertical_cells = 1;
-  double vertical_grading = 1.0;  // top cell / bottom cell in every column
+  double vertical_grading = 1.0;  // top cell / bottom cell
   // Where discharge is measured (x, m): the downstream edge of the crest and the downstream toe.
   double x_crest_section = 0.0, x_toe_section = 0.0;
 
@@ -37,8 +48,9 @@ struct SectionLayout {
   // The same domain around another dam surface (after erosion, for re-meshing).
   SectionLayout with_dam_nodes(std::vector<Eigen::Vector2d> nodes) const;
 
-  int columns() const { return static_cast<int>(dam_nodes.size()) + 1; }  // 2 floor + n-1 dam
-  long long cells() const;
+  long long background_cells() const;
+  // Area of the dam cross-section under dam_nodes, above the floor (m^2 per unit width).
+  double dam_area() const;
 };
 
 }  // namespace suite::foam_erosion

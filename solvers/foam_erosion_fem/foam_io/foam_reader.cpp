@@ -1,5 +1,6 @@
 #include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -7,7 +8,6 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
-#include <unordered_map>
 
 #include "core/io/atomic_file.hpp"
 
@@ -214,10 +214,10 @@ FieldValues read_field_entry(Scanner& s, int components, std::size_t size) {
 
 }  // namespace
 
-PolyMesh PolyMesh::read(const fs::path& dir, const fs::path& points_file) {
+PolyMesh PolyMesh::read(const fs::path& dir) {
   PolyMesh m;
   {
-    const fs::path p = points_file.empty() ? dir / "points" : points_file;
+    const fs::path p = dir / "points";
     const std::string text = slurp(p);
     Scanner s(text, p);
     s.skip_header();
@@ -247,6 +247,13 @@ PolyMesh PolyMesh::read(const fs::path& dir, const fs::path& points_file) {
     s.skip_header();
     const auto v = read_list(s, 1);
     m.owner.assign(v.begin(), v.end());
+  }
+  {
+    const std::string text = slurp(dir / "neighbour");
+    Scanner s(text, dir / "neighbour");
+    s.skip_header();
+    const auto v = read_list(s, 1);
+    m.neighbour.assign(v.begin(), v.end());
   }
   {
     const std::string text = slurp(dir / "boundary");
@@ -280,20 +287,61 @@ const PatchInfo& PolyMesh::patch(const std::string& name) const {
   throw FoamReadError(fmt::format("the mesh has no patch '{}'", name));
 }
 
-std::vector<int> PolyMesh::patch_mesh_points(const std::string& name) const {
-  const auto& p = patch(name);
-  std::vector<int> order;
-  std::unordered_map<int, int> seen;
-  for (int f = p.start_face; f < p.start_face + p.faces; ++f)
-    for (int q : faces[static_cast<std::size_t>(f)])
-      if (seen.emplace(q, static_cast<int>(order.size())).second) order.push_back(q);
-  return order;
-}
-
 int PolyMesh::cells() const {
   int n = 0;
   for (int o : owner) n = std::max(n, o + 1);
   return n;
+}
+
+std::vector<Eigen::Vector3d> PolyMesh::cell_centres() const {
+  const auto n = static_cast<std::size_t>(cells());
+  std::vector<std::vector<int>> points(n);
+  const auto add = [&](int cell, int face) {
+    auto& p = points[static_cast<std::size_t>(cell)];
+    for (int q : faces[static_cast<std::size_t>(face)]) p.push_back(q);
+  };
+  for (std::size_t f = 0; f < owner.size(); ++f) add(owner[f], static_cast<int>(f));
+  for (std::size_t f = 0; f < neighbour.size(); ++f) add(neighbour[f], static_cast<int>(f));
+  std::vector<Eigen::Vector3d> centres(n, Eigen::Vector3d::Zero());
+  for (std::size_t c = 0; c < n; ++c) {
+    auto& p = points[c];
+    std::sort(p.begin(), p.end());
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+    for (int q : p) centres[c] += this->points[static_cast<std::size_t>(q)];
+    if (!p.empty()) centres[c] /= static_cast<double>(p.size());
+  }
+  return centres;
+}
+
+std::vector<double> PolyMesh::cell_volumes() const {
+  std::vector<double> v(static_cast<std::size_t>(cells()), 0.0);
+  for (std::size_t f = 0; f < owner.size(); ++f) {
+    const double flux = face_centre(static_cast<int>(f)).dot(face_area(static_cast<int>(f))) / 3.0;
+    v[static_cast<std::size_t>(owner[f])] += flux;
+    if (f < neighbour.size()) v[static_cast<std::size_t>(neighbour[f])] -= flux;
+  }
+  return v;
+}
+
+Eigen::Vector3d PolyMesh::face_centre(int face) const {
+  const auto& f = faces[static_cast<std::size_t>(face)];
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int q : f) c += points[static_cast<std::size_t>(q)];
+  return c / static_cast<double>(f.size());
+}
+
+Eigen::Vector3d PolyMesh::face_area(int face) const {
+  // Sum of the triangles fanned from the centre; OpenFOAM orders a face's points so that the
+  // right-hand normal points out of its owner.
+  const auto& f = faces[static_cast<std::size_t>(face)];
+  const Eigen::Vector3d c = face_centre(face);
+  Eigen::Vector3d s = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const Eigen::Vector3d a = points[static_cast<std::size_t>(f[i])] - c;
+    const Eigen::Vector3d b = points[static_cast<std::size_t>(f[(i + 1) % f.size()])] - c;
+    s += 0.5 * a.cross(b);
+  }
+  return s;
 }
 
 FieldValues read_internal_field(const fs::path& file, int components, std::size_t size) {
@@ -325,16 +373,6 @@ FieldValues read_patch_value(const fs::path& file, const std::string& patch, int
   return read_field_entry(s, components, size);
 }
 
-void replace_patch_entry(const fs::path& file, const std::string& patch, const std::string& entry) {
-  const std::string text = slurp(file);
-  Scanner s(text, file);
-  seek_patch(s, patch);
-  s.skip();
-  const std::size_t open = s.pos();
-  s.skip_value();
-  const std::size_t close = s.pos();  // just after the '}'
-  io::write_file_atomic(file, text.substr(0, open) + "{\n" + entry + "    }" + text.substr(close));
-}
 
 std::vector<fs::path> time_directories(const fs::path& case_dir) {
   std::vector<std::pair<double, fs::path>> found;
@@ -355,6 +393,18 @@ fs::path latest_time_directory(const fs::path& case_dir) {
   const auto all = time_directories(case_dir);
   if (all.empty()) throw FoamReadError(fmt::format("case {} has no time directory", case_dir.string()));
   return all.back();
+}
+
+void write_internal_scalar_field(const fs::path& file, const std::vector<double>& values) {
+  const std::string text = slurp(file);
+  const auto at = text.find("\ninternalField");
+  const auto end = at == std::string::npos ? at : text.find(';', at);
+  if (end == std::string::npos)
+    throw FoamReadError(fmt::format("{}: no 'internalField ...;' entry to replace", file.string()));
+  std::string list = fmt::format("internalField   nonuniform List<scalar> {}\n(\n", values.size());
+  for (double v : values) list += fmt::format("{:.12g}\n", v);
+  list += ")\n";
+  io::write_file_atomic(file, text.substr(0, at + 1) + list + text.substr(end));
 }
 
 }  // namespace suite::foam_erosion

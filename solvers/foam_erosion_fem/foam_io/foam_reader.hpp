@@ -1,6 +1,6 @@
 #pragma once
 // Reading the ASCII files OpenFOAM writes (writeFormat ascii), as much as the coupling needs:
-// polyMesh points, faces, owner and boundary, and the internal and patch values of a field.
+// polyMesh points, faces, owner, neighbour and boundary, and the internal and patch values of a field.
 // Lists come as "N ( ... )", "N{value}" (all equal) or "uniform v"; "//" and "/* */" comments
 // and the FoamFile header are skipped. Every error names the file and what was expected.
 #include <Eigen/Core>
@@ -19,16 +19,20 @@ struct PolyMesh {
   std::vector<Eigen::Vector3d> points;
   std::vector<std::vector<int>> faces;
   std::vector<int> owner;
+  std::vector<int> neighbour;  // one per internal face (the faces before the first patch)
   std::vector<PatchInfo> patches;
 
-  // Reads constant/polyMesh; `points_file` overrides the points (a moved mesh writes its
-  // points into the time directory: <time>/polyMesh/points).
-  static PolyMesh read(const std::filesystem::path& poly_mesh_dir, const std::filesystem::path& points_file = {});
+  // Reads a polyMesh directory (constant/polyMesh).
+  static PolyMesh read(const std::filesystem::path& poly_mesh_dir);
   const PatchInfo& patch(const std::string& name) const;  // FoamReadError if absent
-  // The patch's points in OpenFOAM's order (primitivePatch::meshPoints: first appearance while
-  // walking the patch's faces in order): the order of a point field's patch values.
-  std::vector<int> patch_mesh_points(const std::string& name) const;
   int cells() const;
+  // The mean of each cell's points: the centroid for the axis-aligned boxes this solver meshes.
+  std::vector<Eigen::Vector3d> cell_centres() const;
+  // Cell volumes by the divergence theorem, V = sum over faces of (x_f . S_f) / 3, outward S_f.
+  std::vector<double> cell_volumes() const;
+  // Centre (mean of the points) and area vector (outward from the owner) of a face.
+  Eigen::Vector3d face_centre(int face) const;
+  Eigen::Vector3d face_area(int face) const;
 };
 
 class FoamReadError : public std::runtime_error {
@@ -48,9 +52,10 @@ FieldValues read_internal_field(const std::filesystem::path& field_file, int com
 FieldValues read_patch_value(const std::filesystem::path& field_file, const std::string& patch, int components,
                              std::size_t size);
 
-// Replaces the body of boundaryField.<patch> in a field file with `entry` (the text between the
-// braces), keeping every other byte of the file. FoamReadError if the patch is not there.
-void replace_patch_entry(const std::filesystem::path& field_file, const std::string& patch, const std::string& entry);
+
+// Replaces the internalField entry of a scalar field file with `values` (nonuniform list, %.12g),
+// keeping every other byte. FoamReadError names the file if it has no internalField.
+void write_internal_scalar_field(const std::filesystem::path& field_file, const std::vector<double>& values);
 
 // The time directories of a case (numeric names), sorted by value; and the latest one.
 std::vector<std::filesystem::path> time_directories(const std::filesystem::path& case_dir);

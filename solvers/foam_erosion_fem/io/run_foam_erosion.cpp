@@ -2,13 +2,37 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/io/output_dir.hpp"
 #include "core/mpi/comm.hpp"
 #include "core/run/phase_timers.hpp"
 #include "core/run/run_record.hpp"
+#include "solvers/foam_erosion_fem/coupling/discharge.hpp"
+#include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/io/coupled_loop.hpp"
 #include "solvers/foam_erosion_fem/io/prepare_case.hpp"
 
 namespace suite::foam_erosion {
+
+namespace {
+
+// discharge.csv and the peak discharge of each section (m^3/s over the whole crest length).
+void write_discharge_outputs(const std::filesystem::path& case_dir, const std::filesystem::path& out, double scale,
+                             Summary& summary) {
+  const std::vector<std::string> sections{"inlet", "crest", "toe", "outlet"};
+  std::vector<DischargeSeries> series;
+  for (const auto& name : sections) series.push_back(read_discharge(case_dir, name));
+  write_discharge_csv(out / "discharge.csv", sections, series, scale);
+  for (std::size_t k = 0; k < sections.size(); ++k) {
+    double peak = 0.0;
+    for (double v : series[k].water) peak = std::max(peak, std::abs(v) * scale);
+    summary.set("peak_" + sections[k] + "_discharge", peak, "m^3/s");
+  }
+}
+
+}  // namespace
 
 int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log) {
   const auto scene = FoamScene::read(cfg.root());
@@ -21,37 +45,55 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
   PhaseTimers timers;
   FoamRunner runner(out / "case", out / "logs");
   Summary summary;
+  std::string status = o.case_only ? "case written" : "finished";
+  int exit_code = 0;
+  double slab_scale = scene.dam.crest_length / SectionLayout::initial(scene).thickness;
   try {
     PreparedCase prepared;
     {
       ScopedPhase phase(timers, "case");
       prepared = prepare_case(scene, runner, scene.time.end);
     }
-    log.info("case {}: {} cells, {} dam elements; meshed and checked", runner.case_dir().string(),
-             prepared.layout.cells(), prepared.layout.dam_nodes.size() - 1);
-    summary.set("cells", static_cast<double>(prepared.layout.cells()));
+    log.info("case {}: {} flow cells ({} in the background, the dam's cut out), {} staircase dam faces, {} FEM "
+             "dam elements; meshed and checked",
+             runner.case_dir().string(), prepared.mesh.cells, prepared.mesh.background_cells, prepared.mesh.dam_faces,
+             prepared.layout.dam_nodes.size() - 1);
+    summary.set("cells", static_cast<double>(prepared.mesh.cells));
+    summary.set("dam_faces", static_cast<double>(prepared.mesh.dam_faces));
     summary.set("dam_elements", static_cast<double>(prepared.layout.dam_nodes.size() - 1));
     if (!o.case_only) {
-      ScopedPhase phase(timers, "flow");
-      const auto flow = runner.run("interFoam", {}, scene.run.ranks);
-      log.info("interFoam: {} steps in {:.1f} s, max Courant {}", flow.time_steps, flow.wall_seconds,
-               flow.max_courant);
-      summary.set("flow_steps", static_cast<double>(flow.time_steps));
-      summary.set("max_courant", flow.max_courant);
+      const auto result = run_coupled(scene, runner, prepared, out, log, timers);
+      summary.set("flow_steps", static_cast<double>(result.flow_steps));
+      summary.set("max_courant", result.max_courant);
+      summary.set("erosion_steps", static_cast<double>(result.erosion_steps));
+      summary.set("remeshes", static_cast<double>(result.remeshes));
+      summary.set("eroded_area", result.eroded_area, "m^2/m");
+      summary.set("eroded_volume", result.eroded_area * scene.dam.crest_length, "m^3");
+      summary.set("final_crest_height", result.final_crest - scene.dam.foundation, "m");
+      if (!result.failure.empty()) {
+        log.error("{}", result.failure);
+        status = "erosion step failed";
+        exit_code = 3;
+      }
     }
   } catch (const FoamRunError& e) {
     // A failed OpenFOAM program is a result of the run, not a crash of this one: say which and
     // where its log is, keep the case and what was written, exit 3.
     log.error("{}", e.what());
-    summary.set("status", "failed");
-    summary.write(out / "summary.json");
-    record.write(out / "run.json", timers, "failed");
-    return 3;
+    status = "failed";
+    exit_code = 3;
   }
-  summary.set("status", o.case_only ? "case written" : "finished");
+  if (!o.case_only) {
+    try {
+      write_discharge_outputs(runner.case_dir(), out, slab_scale, summary);
+    } catch (const FoamReadError& e) {
+      log.warn("no discharge record written: {}", e.what());
+    }
+  }
+  summary.set("status", status);
   summary.write(out / "summary.json");
-  record.write(out / "run.json", timers, "finished");
-  return 0;
+  record.write(out / "run.json", timers, exit_code == 0 ? "finished" : "failed");
+  return exit_code;
 }
 
 }  // namespace suite::foam_erosion

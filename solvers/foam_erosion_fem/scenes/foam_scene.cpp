@@ -73,6 +73,13 @@ TimeSettings read_time(const config::Section& s, const CouplingSettings& couplin
   t.max_dt = s.quantity("max_dt", "s", coupling.interval / 10.0, Range::positive());
   if (s.has("fixed_dt")) t.fixed_dt = s.quantity("fixed_dt", "s", Range::positive());
   t.write_interval = s.quantity("write_interval", "s", coupling.interval, Range::positive());
+  // The coupled loop reads the fields interFoam writes at the end of every coupling interval.
+  const double writes_per_interval = coupling.interval / t.write_interval;
+  if (std::abs(writes_per_interval - std::round(writes_per_interval)) > 1e-9 * writes_per_interval ||
+      writes_per_interval < 1.0 - 1e-9)
+    s.reject("write_interval", fmt::format("{} s does not divide coupling.interval ({} s); the coupling reads the "
+                                           "fields written at the end of each interval: use {} s or a divisor of it",
+                                           t.write_interval, coupling.interval, coupling.interval));
   if (t.fixed_dt && *t.fixed_dt > coupling.interval)
     s.reject("fixed_dt", fmt::format("{} s is longer than coupling.interval ({} s); the flow must take at least one "
                                      "step per erosion step",

@@ -1,0 +1,32 @@
+#pragma once
+// The coupled loop (spec steps 5-7): interFoam runs one coupling interval at a time; after each
+// the bed shear on the dam is mapped onto the FEM curve, the curve erodes by the excess-stress
+// law over that interval (times the morphological factor), and when the eroded curve changes
+// the flow cells the case is re-meshed and its fields mapped (coupling/remesh.hpp). A scene with
+// kd = 0 runs the flow in one go.
+//
+// FoamRunError (a failed OpenFOAM program) propagates; a curve the erosion step cannot keep valid
+// ends the loop with `failure` set. Either way erosion.csv and profiles.csv hold every step done.
+#include <filesystem>
+#include <string>
+
+#include "core/log/logger.hpp"
+#include "core/run/phase_timers.hpp"
+#include "solvers/foam_erosion_fem/io/prepare_case.hpp"
+
+namespace suite::foam_erosion {
+
+struct CoupledRunResult {
+  int erosion_steps = 0;
+  int remeshes = 0;
+  double eroded_area = 0.0;  // m^2 per metre of crest
+  double final_crest = 0.0;  // highest dam node after the last step, m (level)
+  long long flow_steps = 0;
+  double max_courant = 0.0;
+  std::string failure;  // empty when the loop reached time.end
+};
+
+CoupledRunResult run_coupled(const FoamScene& scene, FoamRunner& runner, PreparedCase& prepared,
+                             const std::filesystem::path& out, Logger& log, PhaseTimers& timers);
+
+}  // namespace suite::foam_erosion
