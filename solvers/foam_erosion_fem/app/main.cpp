@@ -2,6 +2,7 @@
 // surface (spec/foam_erosion_fem.md, issue 7).
 //   foam-erosion [scene.yaml] [key.path=value ...] [--out DIR]        build, run, couple, write
 //   foam-erosion case [scene.yaml] [key.path=value ...] [--out DIR]   only write the case
+//   foam-erosion [scene.yaml] ... --out DIR --restart latest           go on from DIR/state.json
 // Without a scene it runs the embedded default (scenes/lab_embankment.yaml).
 #include <cstdio>
 #include <cstring>
@@ -46,6 +47,6 @@ int main(int argc, char** argv) {
     const auto scene = cl.scene ? suite::config::Config::from_file(*cl.scene, cl.overrides)
                                 : suite::config::Config::from_string(suite::embedded::foam_erosion_default_yaml,
                                                                      "<embedded lab_embankment.yaml>", cl.overrides);
-    return suite::foam_erosion::run_foam_erosion(scene, {cl.out, case_only, cl.argv}, log);
+    return suite::foam_erosion::run_foam_erosion(scene, {cl.out, case_only, cl.restart.has_value(), cl.argv}, log);
   });
 }

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <fstream>
+
+#include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
 
 namespace suite::foam_erosion {
@@ -11,6 +14,26 @@ ErosionRecords::ErosionRecords(std::filesystem::path out_dir)
       erosion_("step,time_s,eroded_area_m2_per_m,total_eroded_area_m2_per_m,total_eroded_volume_m3,"
                "rate_integral_m2_per_m,max_depth_m,max_shear_Pa,substeps,nodes_clamped,remeshed,cells\n"),
       profiles_("step,time_s,node,x_m,y_m\n") {}
+
+namespace {
+
+// The header and the rows whose first field (the step) is at most last_step.
+std::string rows_up_to(const std::filesystem::path& file, int last_step) {
+  std::ifstream in(file);
+  std::string line, out;
+  if (!std::getline(in, line)) throw InputError(fmt::format("{}: missing or empty; cannot restart", file.string()));
+  out = line + "\n";
+  while (std::getline(in, line))
+    if (!line.empty() && std::stoi(line.substr(0, line.find(','))) <= last_step) out += line + "\n";
+  return out;
+}
+
+}  // namespace
+
+ErosionRecords::ErosionRecords(std::filesystem::path out_dir, int last_step) : dir_(std::move(out_dir)) {
+  erosion_ = rows_up_to(dir_ / "erosion.csv", last_step);
+  profiles_ = rows_up_to(dir_ / "profiles.csv", last_step);
+}
 
 void ErosionRecords::add_profile(int step, double time, const SurfaceCurve& curve) {
   for (int i = 0; i < curve.node_count(); ++i)

@@ -28,6 +28,8 @@ struct ErosionRow {
 class ErosionRecords {
  public:
   explicit ErosionRecords(std::filesystem::path out_dir);
+  // Continues the records in out_dir, dropping rows of steps after `last_step` (a restart).
+  ErosionRecords(std::filesystem::path out_dir, int last_step);
   void add_profile(int step, double time, const SurfaceCurve& curve);
   void add_step(const ErosionRow& row);
 

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
+#include "core/errors.hpp"
 #include "solvers/foam_erosion_fem/case/case_writer.hpp"
 #include "solvers/foam_erosion_fem/case/dam_cells.hpp"
 #include "solvers/foam_erosion_fem/coupling/erosion_records.hpp"
@@ -37,22 +39,70 @@ double highest_node(const SurfaceCurve& c) {
 
 }  // namespace
 
+PreparedCase resume_case(const FoamScene& s, const fs::path& case_dir, const LoopState& state) {
+  // Time directories past the state's time belong to the segment that was interrupted, and so
+  // do the discharge records that started at its time.
+  for (const auto& t : time_directories(case_dir))
+    if (std::stod(t.filename().string()) > state.time * (1 + 1e-12) + 1e-12) fs::remove_all(t);
+  if (fs::is_directory(case_dir / "postProcessing"))
+    for (const auto& fo : fs::directory_iterator(case_dir / "postProcessing"))
+      for (const auto& start : fs::directory_iterator(fo.path())) {
+        char* end = nullptr;
+        const std::string name = start.path().filename().string();
+        const double t0 = std::strtod(name.c_str(), &end);
+        if (end && *end == '\0' && t0 >= state.time * (1 - 1e-12) - 1e-12 && state.step > 0) fs::remove_all(start.path());
+      }
+  PreparedCase p;
+  p.layout = SectionLayout::initial(s).with_dam_nodes(state.mesh_nodes);
+  p.mesh.background_centres = PolyMesh::read(case_dir / "constant/background").cell_centres();
+  p.mesh.fluid = fluid_cells(p.mesh.background_centres, p.layout);
+  p.mesh.background_cells = p.layout.background_cells();
+  const auto mesh = PolyMesh::read(case_dir / "constant/polyMesh");
+  p.mesh.cells = mesh.cells();
+  p.mesh.dam_faces = mesh.patch(kDamPatch).faces;
+  if (p.mesh.cells != static_cast<long long>(p.mesh.fluid.size()))
+    throw InputError(fmt::format("{}: the mesh has {} cells but the restart state's curve cuts {}; the case does not "
+                                 "belong to this state.json (or the scene's mesh changed): start again without "
+                                 "--restart",
+                                 case_dir.string(), p.mesh.cells, p.mesh.fluid.size()));
+  p.layout = p.layout.with_dam_nodes(state.nodes);
+  return p;
+}
+
 CoupledRunResult run_coupled(const FoamScene& s, FoamRunner& runner, PreparedCase& prepared, const fs::path& out,
-                             Logger& log, PhaseTimers& timers) {
+                             Logger& log, PhaseTimers& timers, const LoopState* resume) {
   CoupledRunResult r;
   SurfaceCurve curve(prepared.layout.dam_nodes);
-  ErosionRecords records(out);
-  records.add_profile(0, 0.0, curve);
+  ErosionRecords records = resume ? ErosionRecords(out, resume->step) : ErosionRecords(out);
+  if (!resume) records.add_profile(0, 0.0, curve);
+  LoopState state;
+  state.nodes = state.mesh_nodes = prepared.layout.dam_nodes;
+  if (resume) state = *resume;
   const auto settings = erosion_settings(s);
   const bool erodes = s.soil.kd > 0.0;
   const double interval = s.coupling.interval;
   const int steps = erodes ? std::max(1, static_cast<int>(std::ceil(s.time.end / interval - 1e-9))) : 1;
   const auto end_of = [&](int k) { return erodes ? std::min(k * interval, s.time.end) : s.time.end; };
   SectionLayout layout = prepared.layout;
-  double t_prev = 0.0;
+  double t_prev = state.time;
   r.final_crest = highest_node(curve);
+  r.erosion_steps = state.step;
+  r.remeshes = state.remeshes;
+  r.eroded_area = state.eroded_area;
+  const int first = state.step + 1;
+  // A state saved after the last step of a shorter run may still need the re-mesh that step
+  // skipped (nothing followed it).
+  if (resume && first <= steps && fluid_cells(prepared.mesh.background_centres, layout) != prepared.mesh.fluid) {
+    ScopedPhase remesh_phase(timers, "remesh");
+    prepared.mesh = remesh_case(s, layout, prepared.mesh, runner,
+                                out / "cases" / fmt::format("segment_{:03d}", r.remeshes), end_of(first), prepared.runs);
+    ++r.remeshes;
+    state.mesh_nodes = curve.nodes();
+    log.info("re-meshed for the curve of step {} (the run that reached it stopped there): {} flow cells", state.step,
+             prepared.mesh.cells);
+  }
 
-  for (int k = 1; k <= steps; ++k) {
+  for (int k = first; k <= steps; ++k) {
     write_control_dict(s, runner.case_dir(), end_of(k));
     {
       ScopedPhase phase(timers, "flow");
@@ -93,10 +143,17 @@ CoupledRunResult run_coupled(const FoamScene& s, FoamRunner& runner, PreparedCas
                                   out / "cases" / fmt::format("segment_{:03d}", r.remeshes), end_of(k + 1), prepared.runs);
       row.remeshed = true;
       ++r.remeshes;
+      state.mesh_nodes = curve.nodes();
     }
     row.cells = prepared.mesh.cells;
     records.add_step(row);
     records.add_profile(k, t_now, curve);
+    state.step = k;
+    state.time = t_now;
+    state.remeshes = r.remeshes;
+    state.eroded_area = r.eroded_area;
+    state.nodes = curve.nodes();
+    state.write(out / "state.json");
     log.info("erosion step {} at t = {} s: max shear {:.3g} Pa, eroded {:.3g} m^2/m ({:.3g} in total), deepest {:.3g} m{}",
              k, t_now, row.max_shear, row.report.eroded_area + 0.0, r.eroded_area, row.report.max_depth,
              row.remeshed ? fmt::format(", re-meshed: {} flow cells", prepared.mesh.cells) : "");

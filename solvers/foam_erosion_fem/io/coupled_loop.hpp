@@ -12,6 +12,7 @@
 
 #include "core/log/logger.hpp"
 #include "core/run/phase_timers.hpp"
+#include "solvers/foam_erosion_fem/coupling/loop_state.hpp"
 #include "solvers/foam_erosion_fem/io/prepare_case.hpp"
 
 namespace suite::foam_erosion {
@@ -26,7 +27,16 @@ struct CoupledRunResult {
   std::string failure;  // empty when the loop reached time.end
 };
 
+// `resume`: go on from a restart state (coupling/loop_state.hpp) instead of t = 0; `prepared`
+// then describes the case as it is on disk (see resume_case). state.json is written after
+// every step either way.
 CoupledRunResult run_coupled(const FoamScene& scene, FoamRunner& runner, PreparedCase& prepared,
-                             const std::filesystem::path& out, Logger& log, PhaseTimers& timers);
+                             const std::filesystem::path& out, Logger& log, PhaseTimers& timers,
+                             const LoopState* resume = nullptr);
+
+// The case of an output folder made ready to go on from `state`: the time directories after
+// state.time and the records of the interrupted segment removed; the layout, background and
+// flow cells rebuilt from the state and constant/background.
+PreparedCase resume_case(const FoamScene& scene, const std::filesystem::path& case_dir, const LoopState& state);
 
 }  // namespace suite::foam_erosion

@@ -33,6 +33,11 @@ MeshedSection mesh_section(const SectionLayout& layout, FoamRunner& runner, std:
   const auto poly_mesh = runner.case_dir() / "constant/polyMesh";
   std::filesystem::remove_all(poly_mesh);
   runs.push_back(runner.run("blockMesh"));
+  // The background stays in the case (constant/background, which OpenFOAM does not read): a
+  // restarted run finds the flow cells of an eroded curve from it.
+  const auto background = runner.case_dir() / "constant/background";
+  std::filesystem::remove_all(background);
+  std::filesystem::copy(poly_mesh, background, std::filesystem::copy_options::recursive);
   MeshedSection out;
   out.background_centres = PolyMesh::read(poly_mesh).cell_centres();
   out.fluid = fluid_cells(out.background_centres, layout);

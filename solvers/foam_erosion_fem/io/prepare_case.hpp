@@ -29,7 +29,8 @@ struct PreparedCase {
 };
 
 // Meshes the runner's case for `layout` (its system/blockMeshDict must be written): the steps
-// above from blockMesh to checkMesh, appending each program run to `runs`.
+// above from blockMesh to checkMesh, appending each program run to `runs`. The background mesh
+// is kept as constant/background.
 MeshedSection mesh_section(const SectionLayout& layout, FoamRunner& runner, std::vector<ProgramRun>& runs);
 
 PreparedCase prepare_case(const FoamScene& scene, FoamRunner& runner, double first_end_time);

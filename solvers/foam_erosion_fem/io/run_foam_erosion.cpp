@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/io/output_dir.hpp"
 #include "core/mpi/comm.hpp"
@@ -50,19 +51,26 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
   double slab_scale = scene.dam.crest_length / SectionLayout::initial(scene).thickness;
   try {
     PreparedCase prepared;
-    {
+    std::optional<LoopState> resume;
+    if (o.restart) {
+      resume = LoopState::read(out / "state.json");
+      prepared = resume_case(scene, runner.case_dir(), *resume);
+      log.info("restarting from {}: step {} at t = {} s, {} re-meshes so far", (out / "state.json").string(),
+               resume->step, resume->time, resume->remeshes);
+    } else {
+      for (const char* stale : {"case", "cases", "state.json"}) std::filesystem::remove_all(out / stale);
       ScopedPhase phase(timers, "case");
       prepared = prepare_case(scene, runner, scene.time.end);
     }
     log.info("case {}: {} flow cells ({} in the background, the dam's cut out), {} staircase dam faces, {} FEM "
-             "dam elements; meshed and checked",
+             "dam elements; {}",
              runner.case_dir().string(), prepared.mesh.cells, prepared.mesh.background_cells, prepared.mesh.dam_faces,
-             prepared.layout.dam_nodes.size() - 1);
+             prepared.layout.dam_nodes.size() - 1, o.restart ? "as the interrupted run left it" : "meshed and checked");
     summary.set("cells", static_cast<double>(prepared.mesh.cells));
     summary.set("dam_faces", static_cast<double>(prepared.mesh.dam_faces));
     summary.set("dam_elements", static_cast<double>(prepared.layout.dam_nodes.size() - 1));
     if (!o.case_only) {
-      const auto result = run_coupled(scene, runner, prepared, out, log, timers);
+      const auto result = run_coupled(scene, runner, prepared, out, log, timers, resume ? &*resume : nullptr);
       summary.set("flow_steps", static_cast<double>(result.flow_steps));
       summary.set("max_courant", result.max_courant);
       summary.set("erosion_steps", static_cast<double>(result.erosion_steps));

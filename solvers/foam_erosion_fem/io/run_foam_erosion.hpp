@@ -7,7 +7,9 @@
 //   erosion.csv       per coupling step: time, eroded area, eroded volume, deepest erosion, ...
 //   profiles.csv      the dam surface nodes after each coupling step
 //   summary.json, run.json, effective_config.yaml
-// `case_only` stops after the meshed case is written.
+//   state.json        the restart state after the last finished coupling step
+// `case_only` stops after the meshed case is written. A fresh run removes the case, cases/ and
+// state.json an earlier run left in the folder.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -20,6 +22,9 @@ namespace suite::foam_erosion {
 struct RunOptions {
   std::filesystem::path out;
   bool case_only = false;
+  // Go on from the output folder's state.json (the last finished coupling step) instead of
+  // starting at t = 0; any value does ("latest" is what the suite's --restart says).
+  bool restart = false;
   std::vector<std::string> argv;  // for run.json
 };
 
