@@ -1,6 +1,7 @@
 #include "solvers/foam_erosion_fem/coupling/remesh.hpp"
 
 #include <limits>
+#include <set>
 
 #include "solvers/foam_erosion_fem/case/case_writer.hpp"
 #include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
@@ -55,8 +56,14 @@ MeshedSection remesh_case(const FoamScene& scene, const SectionLayout& layout, c
   // mapFields (startFrom latestTime) writes the mapped fields into it over the initial ones,
   // keeping their boundary conditions.
   fs::rename(case_dir / "0", case_dir / time_name);
+  std::set<fs::path> initial;
+  for (const auto& f : fs::directory_iterator(case_dir / time_name)) initial.insert(f.path().filename());
   runs.push_back(runner.run("mapFields", {archive_dir.string(), "-consistent", "-sourceTime", "latestTime",
                                           "-mapMethod", "mapNearest"}));
+  // mapFields also creates the source's derived fields (p, wallShearStress), with whatever was in
+  // memory in the cells it could not map; the solver recomputes them, decomposePar would choke.
+  for (const auto& f : fs::directory_iterator(case_dir / time_name))
+    if (!initial.count(f.path().filename())) fs::remove_all(f.path());
   fill_opened_cells(old_mesh, mesh, archive_dir / time_name / "alpha.water", case_dir / time_name / "alpha.water");
   if (fs::exists(archive_dir / "postProcessing"))
     fs::copy(archive_dir / "postProcessing", case_dir / "postProcessing", fs::copy_options::recursive);

@@ -42,8 +42,13 @@ double highest_node(const SurfaceCurve& c) {
 PreparedCase resume_case(const FoamScene& s, const fs::path& case_dir, const LoopState& state) {
   // Time directories past the state's time belong to the segment that was interrupted, and so
   // do the discharge records that started at its time.
-  for (const auto& t : time_directories(case_dir))
-    if (std::stod(t.filename().string()) > state.time * (1 + 1e-12) + 1e-12) fs::remove_all(t);
+  // (Also in processor*/ of a decomposed case.)
+  std::vector<fs::path> roots{case_dir};
+  for (const auto& d : fs::directory_iterator(case_dir))
+    if (d.is_directory() && d.path().filename().string().rfind("processor", 0) == 0) roots.push_back(d.path());
+  for (const auto& root : roots)
+    for (const auto& t : time_directories(root))
+      if (std::stod(t.filename().string()) > state.time * (1 + 1e-12) + 1e-12) fs::remove_all(t);
   if (fs::is_directory(case_dir / "postProcessing"))
     for (const auto& fo : fs::directory_iterator(case_dir / "postProcessing"))
       for (const auto& start : fs::directory_iterator(fo.path())) {

@@ -26,15 +26,19 @@ namespace fs = std::filesystem;
 namespace {
 
 // The environment for a child: ours without the MPI launcher's variables (a child mpirun must
-// not think it is a rank of our job), with WM_PROJECT_DIR set.
+// not think it is a rank of our job), with WM_PROJECT_DIR set. The user's own OMPI_MCA_ settings
+// stay; the ones MPI_Init of this process set for itself (ess=singleton, orte_*, pmix) go, or
+// a child mpirun fails at once without a word.
 std::vector<std::string> child_environment(const fs::path& project_dir) {
+  const auto starts = [](const std::string& kv, const char* prefix) { return kv.rfind(prefix, 0) == 0; };
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e) {
     const std::string kv(*e);
-    const bool mpi_internal = (kv.rfind("OMPI_", 0) == 0 || kv.rfind("PMIX_", 0) == 0 || kv.rfind("OPAL_", 0) == 0 ||
-                               kv.rfind("PMI_", 0) == 0) &&
-                              kv.rfind("OMPI_ALLOW_RUN_AS_ROOT", 0) != 0 && kv.rfind("OMPI_MCA_", 0) != 0;
-    if (mpi_internal || kv.rfind("WM_PROJECT_DIR=", 0) == 0) continue;
+    const bool launcher_mca = starts(kv, "OMPI_MCA_ess") || starts(kv, "OMPI_MCA_orte_") || starts(kv, "OMPI_MCA_pmix");
+    const bool user_mca = starts(kv, "OMPI_MCA_") && !launcher_mca;
+    const bool mpi_internal = (starts(kv, "OMPI_") || starts(kv, "PMIX_") || starts(kv, "OPAL_") || starts(kv, "PMI_")) &&
+                              !starts(kv, "OMPI_ALLOW_RUN_AS_ROOT") && !user_mca;
+    if (mpi_internal || starts(kv, "WM_PROJECT_DIR=")) continue;
     env.push_back(kv);
   }
   env.push_back("WM_PROJECT_DIR=" + project_dir.string());
