@@ -14,21 +14,24 @@ import matplotlib.pyplot as plt
 rows = list(csv.DictReader(open(sys.argv[1])))
 groups = {}
 for r in rows:
-    groups.setdefault((r["config"], float(r["cell_size_m"])), []).append(r)
+    config = r["config"] + ("" if r.get("ranks", "1") == "1" else f"_np{r['ranks']}")
+    groups.setdefault((config, float(r["cell_size_m"])), []).append(r)
 med = {k: {f: statistics.median(float(r[f]) for r in v)
            for f in ("cells", "time_steps", "flow_wall_s", "wall_s_per_simulated_s", "crest_volume_m3")}
        for k, v in groups.items()}
 finest = min(h for (c, h) in med if c == "adaptive")
 ref = med[("adaptive", finest)]["crest_volume_m3"]
 fig, ax = plt.subplots(figsize=(6.4, 4.4))
-for config, marker in (("adaptive", "o-"), ("fixed_1e-3", "s"), ("fixed_5e-4", "^")):
+labels = {"adaptive": "adaptive (maxCo 0.5)", "fixed_1e-3": "fixed dt = 1e-3", "fixed_5e-4": "fixed dt = 5e-4",
+          "adaptive_np2": "adaptive, 2 ranks"}
+for config, marker in (("adaptive", "o-"), ("fixed_1e-3", "s"), ("fixed_5e-4", "^"), ("adaptive_np2", "D")):
     # The reference run itself has no error to show.
     pts = sorted((h, m) for (c, h), m in med.items() if c == config and not (c == "adaptive" and h == finest))
     if not pts:
         continue
     x = [m["flow_wall_s"] for h, m in pts]
     y = [max(abs(m["crest_volume_m3"] / ref - 1.0), 1e-4) for h, m in pts]
-    ax.loglog(x, y, marker, label=config.replace("_", " dt = ").replace("adaptive", "adaptive (maxCo 0.5)"))
+    ax.loglog(x, y, marker, label=labels[config])
     for (h, m), xi, yi in zip(pts, x, y):
         ax.annotate(f"h={h:g} m\n{int(m['cells'])} cells", (xi, yi), fontsize=7, textcoords="offset points",
                     xytext=(4, 4))

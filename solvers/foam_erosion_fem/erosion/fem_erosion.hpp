@@ -12,10 +12,9 @@
 //    invalid at max_substeps, erode throws CurveValidityError naming the element.
 // 5. Optional angle-of-repose limiter (limit_repose): sand slides on steep elements, area kept.
 //
-// Fixed topology: the node count never changes, because the nodes are the points of the dam
-// patch of the OpenFOAM mesh, which is moved (not rebuilt) between coupling steps (step 7).
-// The two end nodes never move: they are where the dam surface meets the non-erodible floor of
-// the CFD mesh, whose points stay put.
+// Fixed topology: the node count never changes (the coupling maps the flow's wall shear onto
+// these elements and cuts the flow mesh along the curve, coupling/ and case/dam_cells.hpp).
+// The two end nodes never move: they are where the dam surface meets the non-erodible floor.
 //
 // Bookkeeping: ErosionStepReport::eroded_area is the exact polygon area between the old and the
 // new curve; rate_integral is dt f_morph times the exact integral of the nodal rate (P1

@@ -37,7 +37,7 @@ struct Domain {
 struct MeshSettings {
   double cell_size = 0.0;         // on and above the dam, m
   double far_cell_size = 0.0;     // at the inlet and outlet (the floor cells grow towards them), m
-  double vertical_grading = 1.0;  // top cell height / bottom cell height in every column
+  double vertical_grading = 1.0;  // top cell height / bottom cell height of the background mesh
 };
 
 struct Fluid {
