@@ -20,7 +20,11 @@ for _ in $(seq 600); do grep -q "Ritter dam break" "$log" 2>/dev/null && break; 
 grep -q "Ritter dam break" "$log" || { echo "the job did not start"; cat "$log"; scontrol show job "$job"; exit 1; }
 scancel --signal=USR1 --batch "$job"
 # Slurm holds a requeued job back for a while (BeginTime); release it at once here.
-for _ in $(seq 300); do grep -q "requeued" "$log" && [ "$(state)" = PENDING ] && break; sleep 0.1; done
+# (The script's own message comes before `scontrol requeue` takes effect: wait for Slurm's count.)
+for _ in $(seq 600); do scontrol show job "$job" | grep -q "Restarts=1" && [ "$(state)" = PENDING ] && break; sleep 0.1; done
+# slurmd refuses a launch whose credential is not newer (in whole seconds) than the requeue's
+# revocation ("Job credential revoked", the job then FAILS): let a second pass first.
+sleep 2
 scontrol update JobId="$job" StartTime=now || true
 for _ in $(seq 900); do [ "$(state)" = COMPLETED ] && break; case "$(state)" in FAILED|CANCELLED|TIMEOUT) break ;; esac; sleep 0.2; done
 cat "$log" | grep -v " step " || true

@@ -18,7 +18,11 @@ state() { scontrol show job "$job" | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p'; }
 for _ in $(seq 1800); do grep -q '"step": 2' "$work/pieces/state.json" 2>/dev/null && break; sleep 0.1; done
 grep -q '"step": 2' "$work/pieces/state.json" || { echo "the run did not reach step 2"; cat "$log"; exit 1; }
 scancel --signal=USR1 --batch "$job"
-for _ in $(seq 300); do grep -q "requeued" "$log" && [ "$(state)" = PENDING ] && break; sleep 0.1; done
+# (The script's own message comes before `scontrol requeue` takes effect: wait for Slurm's count.)
+for _ in $(seq 600); do scontrol show job "$job" | grep -q "Restarts=1" && [ "$(state)" = PENDING ] && break; sleep 0.1; done
+# slurmd refuses a launch whose credential is not newer (in whole seconds) than the requeue's
+# revocation ("Job credential revoked", the job then FAILS): let a second pass first.
+sleep 2
 scontrol update JobId="$job" StartTime=now || true
 for _ in $(seq 1800); do [ "$(state)" = COMPLETED ] && break; case "$(state)" in FAILED|CANCELLED|TIMEOUT) break ;; esac; sleep 0.2; done
 cat "$log"
