@@ -30,4 +30,16 @@ void Schedule::written() {
   last_ = clock_();
 }
 
+std::optional<std::string> checkpoint_or_stop(const mpi::Comm& comm, Schedule& schedule, long long step,
+                                              SignalRequest signal, const std::optional<std::string>& budget_spent,
+                                              const std::function<void()>& write) {
+  if (schedule.due(comm, step, signal) || budget_spent) {
+    write();
+    schedule.written();
+  }
+  if (budget_spent) return budget_spent;
+  if (signal == SignalRequest::checkpoint_and_stop) return std::string(describe(signal));
+  return std::nullopt;
+}
+
 }  // namespace suite::checkpoint

@@ -8,6 +8,8 @@
 //   every: 30 min         # wall time between checkpoints; 0: off
 //   keep: 2               # newest checkpoints kept on disk
 #include <functional>
+#include <optional>
+#include <string>
 
 #include "core/config/config.hpp"
 #include "core/mpi/comm.hpp"
@@ -42,5 +44,14 @@ class Schedule {
   Clock clock_;
   double last_ = 0.0;
 };
+
+// The end of every step of a checkpointing run: writes a checkpoint through `write` (and restarts
+// the schedule's interval) when the schedule or `signal` asks for one or the run's step budget is
+// spent (`budget_spent` says which budget), then returns why the run must stop now, if it must:
+// a signal to checkpoint and stop, or the spent budget. `signal` is the request already agreed
+// over the ranks (SignalWatcher::poll). COLLECTIVE.
+std::optional<std::string> checkpoint_or_stop(const mpi::Comm& comm, Schedule& schedule, long long step,
+                                              SignalRequest signal, const std::optional<std::string>& budget_spent,
+                                              const std::function<void()>& write);
 
 }  // namespace suite::checkpoint

@@ -144,15 +144,14 @@ class DamBreakRun {
       if (p_.step % output_every_ == 0 || p_.step == n_steps_) write_fields(p_.step);
       const SignalRequest req = signals.poll(comm_);
       const bool max_reached = s_.max_steps > 0 && p_.step - first_step >= s_.max_steps && p_.step < n_steps_;
-      if (schedule.due(comm_, p_.step, req) || max_reached) {
-        write_checkpoint();
-        schedule.written();
-      }
-      if (req == SignalRequest::checkpoint_and_stop || max_reached) {
-        const std::string why = max_reached ? fmt::format("time.max_steps = {}", s_.max_steps) : describe(req);
+      const auto why = checkpoint::checkpoint_or_stop(
+          comm_, schedule, p_.step, req,
+          max_reached ? std::optional(fmt::format("time.max_steps = {}", s_.max_steps)) : std::nullopt,
+          [&] { write_checkpoint(); });
+      if (why) {
         log_.warn("stopped at step {} (t = {} s) on {}; continue with --restart latest", p_.step, time_of(p_.step),
-                  why);
-        record_.write(out_ / "run.json", timers_, "stopped: " + why);
+                  *why);
+        record_.write(out_ / "run.json", timers_, "stopped: " + *why);
         return 0;
       }
     }

@@ -44,7 +44,9 @@ TurbulenceInit turbulence_init(const FoamScene& s) {
   return {k, epsilon};
 }
 
-void write_fields(const FoamScene& s, const SectionLayout& L, const fs::path& dir) {
+}  // namespace
+
+void write_initial_fields(const FoamScene& s, const SectionLayout& L, const fs::path& dir) {
   const std::string flow_rate = inlet_flow_rate(s, L);
   const std::string zero_vec = "uniform (0 0 0)";
   const std::string wall_u = "        type            noSlip;\n";
@@ -114,8 +116,6 @@ void write_fields(const FoamScene& s, const SectionLayout& L, const fs::path& di
                                 {"dam", wall("nutkWallFunction", 0.0)}}));
   }
 }
-
-}  // namespace
 
 void write_constant(const FoamScene& s, const fs::path& dir) {
   write_case_file(dir, "constant/g",
@@ -282,10 +282,6 @@ void write_case_setup(const FoamScene& scene, const SectionLayout& layout, const
   write_constant(scene, case_dir);
   write_system(scene, layout, case_dir);
   write_control_dict(scene, case_dir, end_time);
-}
-
-void write_initial_fields(const FoamScene& scene, const SectionLayout& layout, const fs::path& case_dir) {
-  write_fields(scene, layout, case_dir);
 }
 
 }  // namespace suite::foam_erosion

@@ -55,7 +55,7 @@ PreparedCase resume_case(const FoamScene& s, const fs::path& case_dir, const Loo
         char* end = nullptr;
         const std::string name = start.path().filename().string();
         const double t0 = std::strtod(name.c_str(), &end);
-        if (end && *end == '\0' && t0 >= state.time * (1 - 1e-12) - 1e-12 && state.step > 0) fs::remove_all(start.path());
+        if (end && *end == '\0' && t0 >= state.time * (1 - 1e-12) - 1e-12) fs::remove_all(start.path());
       }
   PreparedCase p;
   p.layout = SectionLayout::initial(s).with_dam_nodes(state.mesh_nodes);

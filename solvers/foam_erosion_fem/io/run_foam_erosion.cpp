@@ -48,7 +48,7 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
   Summary summary;
   std::string status = o.case_only ? "case written" : "finished";
   int exit_code = 0;
-  double slab_scale = scene.dam.crest_length / SectionLayout::initial(scene).thickness;
+  const double slab_scale = scene.dam.crest_length / SectionLayout::initial(scene).thickness;
   try {
     PreparedCase prepared;
     std::optional<LoopState> resume;

@@ -106,16 +106,14 @@ class MpmRun {
       const SignalRequest req = signals.poll(comm_);
       const bool max_reached = scene_.time.max_steps > 0 && sim_.steps() - first_step >= scene_.time.max_steps &&
                                sim_.time() < end;
-      if (schedule.due(comm_, sim_.steps(), req) || max_reached) {
-        write_checkpoint();
-        schedule.written();
-      }
-      if (req == SignalRequest::checkpoint_and_stop || max_reached) {
-        const std::string why =
-            max_reached ? fmt::format("time.max_steps = {}", scene_.time.max_steps) : describe(req);
+      const auto why = checkpoint::checkpoint_or_stop(
+          comm_, schedule, sim_.steps(), req,
+          max_reached ? std::optional(fmt::format("time.max_steps = {}", scene_.time.max_steps)) : std::nullopt,
+          [&] { write_checkpoint(); });
+      if (why) {
         log_.warn("stopped at step {} (t = {} s) on {}; continue with --restart latest", sim_.steps(), sim_.time(),
-                  why);
-        record_.write(out_ / "run.json", timers_, "stopped: " + why);
+                  *why);
+        record_.write(out_ / "run.json", timers_, "stopped: " + *why);
         return 0;
       }
     }
