@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # slurm/foam_erosion.sbatch on the private Slurm: the time-limit warning (USR1 to the batch
-# script) stops the coupled run after its second saved step, the job requeues itself, the second
+# script, which sends SIGTERM to foam-erosion) stops the coupled run after its second saved step,
+# foam-erosion stopping its interFoam itself; the job requeues itself, the second
 # start goes on with --restart latest, and the records equal those of an uninterrupted run byte
 # for byte.
 #   foam_erosion_requeue.sh SOURCE_DIR BIN_DIR WORK_DIR
@@ -29,6 +30,7 @@ cat "$log"
 [ "$(state)" = COMPLETED ] || { echo "job ended $(state)"; exit 1; }
 grep -q "start 2:.*--restart latest" "$log" || { echo "the second start did not restart"; exit 1; }
 grep -q "restarting from" "$work/pieces/log.txt" || { echo "foam-erosion did not restart"; exit 1; }
+grep -q "stopped on signal 15" "$work/pieces/log.txt" || { echo "foam-erosion did not stop on the warning's SIGTERM"; exit 1; }
 
 "$bin/foam-erosion" "${scene[@]}" --out "$work/straight" --log-level warn
 for f in erosion.csv profiles.csv discharge.csv; do cmp "$work/straight/$f" "$work/pieces/$f"; done

@@ -111,7 +111,7 @@ CoupledRunResult run_coupled(const FoamScene& s, FoamRunner& runner, PreparedCas
     write_control_dict(s, runner.case_dir(), end_of(k));
     {
       ScopedPhase phase(timers, "flow");
-      const auto flow = runner.run("interFoam", {}, s.run.ranks);
+      const auto flow = runner.run("interFoam", {}, s.run.ranks, "", /*stoppable=*/true);
       r.flow_steps += flow.time_steps;
       r.max_courant = std::max(r.max_courant, flow.max_courant);
       log.info("flow to t = {} s: {} steps in {:.1f} s, max Courant {:.3g}", end_of(k), flow.time_steps,

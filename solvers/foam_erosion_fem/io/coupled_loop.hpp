@@ -5,7 +5,7 @@
 // the flow cells the case is re-meshed and its fields mapped (coupling/remesh.hpp). A scene with
 // kd = 0 runs the flow in one go.
 //
-// FoamRunError (a failed OpenFOAM program) propagates; a curve the erosion step cannot keep valid
+// FoamRunError (a failed OpenFOAM program) and FoamRunStopped (a stop request) propagate; a curve the erosion step cannot keep valid
 // ends the loop with `failure` set. Either way erosion.csv and profiles.csv hold every step done.
 #include <filesystem>
 #include <string>

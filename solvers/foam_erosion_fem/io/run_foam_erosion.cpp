@@ -10,6 +10,7 @@
 #include "core/mpi/comm.hpp"
 #include "core/run/phase_timers.hpp"
 #include "core/run/run_record.hpp"
+#include "core/run/signals.hpp"
 #include "solvers/foam_erosion_fem/coupling/discharge.hpp"
 #include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
 #include "solvers/foam_erosion_fem/io/coupled_loop.hpp"
@@ -44,7 +45,20 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
   log.add_file(out / "log.txt");
   suite::RunRecord record(self, "foam-erosion", o.argv);
   PhaseTimers timers;
-  FoamRunner runner(out / "case", out / "logs");
+  // SIGTERM/SIGINT (Slurm's time limit, scancel, Ctrl-C) stop interFoam and end the run with the
+  // outputs of the steps done; state.json is written after every step, so SIGUSR1 has nothing to add.
+  SignalWatcher signals;
+  bool stop = false;
+  RunnerOptions runner_options;
+  runner_options.stop_requested = [&] {
+    if (stop) return true;
+    const auto request = signals.poll(self);
+    if (request == SignalRequest::checkpoint)
+      log.info("signal {}: nothing to save, state.json is written after every coupling step", signals.last_signal());
+    stop = request == SignalRequest::checkpoint_and_stop;
+    return stop;
+  };
+  FoamRunner runner(out / "case", out / "logs", runner_options);
   Summary summary;
   std::string status = o.case_only ? "case written" : "finished";
   int exit_code = 0;
@@ -84,6 +98,13 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
         exit_code = 3;
       }
     }
+  } catch (const FoamRunStopped& e) {
+    const auto saved = out / "state.json";
+    log.warn("stopped on signal {} ({}); {}; continue with --restart latest", signals.last_signal(), e.what(),
+             std::filesystem::exists(saved)
+                 ? fmt::format("{} holds coupling step {}", saved.string(), LoopState::read(saved).step)
+                 : std::string("no coupling step was finished"));
+    status = "stopped";
   } catch (const FoamRunError& e) {
     // A failed OpenFOAM program is a result of the run, not a crash of this one: say which and
     // where its log is, keep the case and what was written, exit 3.
@@ -100,7 +121,9 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
   }
   summary.set("status", status);
   summary.write(out / "summary.json");
-  record.write(out / "run.json", timers, exit_code == 0 ? "finished" : "failed");
+  record.write(out / "run.json", timers,
+               exit_code != 0 ? "failed" : status == "stopped" ? fmt::format("stopped: signal {}", signals.last_signal())
+                                                               : "finished");
   return exit_code;
 }
 

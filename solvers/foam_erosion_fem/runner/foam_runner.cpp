@@ -170,7 +170,9 @@ fs::path FoamRunner::fresh_log_path(const std::string& name) const {
 }
 
 ProgramRun FoamRunner::run(const std::string& program, const std::vector<std::string>& args, int ranks,
-                          const std::string& log_name) {
+                          const std::string& log_name, bool stoppable) {
+  const auto stopping = [this] { return options_.stop_requested && options_.stop_requested(); };
+  if (stoppable && stopping()) throw FoamRunStopped(fmt::format("{} not started: the run was asked to stop", program));
   ProgramRun rec;
   rec.program = program;
   rec.log = fresh_log_path(log_name.empty() ? program : log_name);
@@ -205,21 +207,28 @@ ProgramRun FoamRunner::run(const std::string& program, const std::vector<std::st
 
   LogWatcher watcher(rec.log, options_.log_tail_lines);
   std::optional<std::string> stop_reason;
+  bool asked_to_stop = false;
   int status = 0;
   auto pause = std::chrono::milliseconds(5);
   for (;;) {
     const pid_t w = ::waitpid(pid, &status, WNOHANG);
     if (w == pid) break;
     if (w < 0 && errno != EINTR) throw LibraryError(fmt::format("waitpid for {} failed: {}", program, std::strerror(errno)));
-    if (!stop_reason) {
+    if (!stop_reason && !asked_to_stop) {
       stop_reason = watcher.poll(rec, options_.courant_blow_up);
-      if (stop_reason) ::kill(pid, SIGTERM);
+      asked_to_stop = !stop_reason && stoppable && stopping();
+      if (stop_reason || asked_to_stop) ::kill(pid, SIGTERM);  // mpirun passes it on to its ranks
     }
     std::this_thread::sleep_for(pause);
     pause = std::min(pause * 2, std::chrono::milliseconds(200));
   }
   if (auto r = watcher.poll(rec, options_.courant_blow_up); r && !stop_reason) stop_reason = r;
   rec.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // A signal that reached the whole job (Slurm's time limit) may have ended the child before the
+  // poll above saw the request: ask again after it ended.
+  if (asked_to_stop || (!stop_reason && status != 0 && stopping()))
+    throw FoamRunStopped(fmt::format("{} stopped after {:.1f} s: the run was asked to stop (log: {})", program,
+                                     rec.wall_seconds, rec.log.string()));
 
   std::string reason;
   if (stop_reason)
