@@ -12,6 +12,7 @@
 #include "solvers/foam_erosion_fem/case/dam_cells.hpp"
 #include "solvers/foam_erosion_fem/case/section_layout.hpp"
 #include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/io/breach_comparison.hpp"
 #include "solvers/foam_erosion_fem/io/prepare_case.hpp"
 #include "solvers/foam_erosion_fem/runner/foam_runner.hpp"
 #include "solvers/foam_erosion_fem/scenes/foam_scene.hpp"
@@ -45,6 +46,34 @@ double distance_to_curve(const SectionLayout& L, const Eigen::Vector2d& p) {
 }
 
 }  // namespace
+
+// The breach model's run beside the coupled one sees the same dam, inflow and pool, the kd of the
+// accelerated erosion (kd x morphological factor), and the 2D section's upstream storage: at
+// every level the table's volume is the water area upstream of the dam (floor plus the wedge on
+// the upstream face) times the crest length, within the error of interpolating that quadratic
+// linearly between rows dz apart (slope x dz^2 / 8 per metre of crest).
+TEST(BreachComparison, SameDamAndInflowAndTheSectionsUpstreamStorage) {
+  const auto s = scene_with();
+  const auto b = breach_scene_for(s);
+  ASSERT_TRUE(b.has_value());
+  EXPECT_EQ(b->dam.height, s.dam.height);
+  EXPECT_EQ(b->dam.crest_width, s.dam.crest_width);
+  EXPECT_EQ(b->dam.downstream_slope, s.dam.downstream_slope);
+  EXPECT_DOUBLE_EQ(b->soil.kd, s.soil.kd * s.coupling.morphological_factor);
+  EXPECT_EQ(b->reservoir.initial_level, s.initial_level);
+  EXPECT_EQ(b->time.end, s.time.end);
+  for (double t : {0.0, 1.0, 3.5}) EXPECT_EQ(b->inflow(t), s.inflow(t));
+  const double L = s.domain.upstream_length, m = s.dam.upstream_slope, H = s.dam.height;
+  const double dz = s.domain.height / 64, tol = m * dz * dz / 8 * s.dam.crest_length + 1e-15;
+  for (double d : {0.0, 0.05, 0.1234, H, H + 0.07}) {
+    const double area = d <= H ? L * d + 0.5 * m * d * d : L * d + 0.5 * m * H * H + m * H * (d - H);
+    EXPECT_NEAR(b->reservoir.storage.volume(s.dam.foundation + d), area * s.dam.crest_length, tol) << "depth " << d;
+  }
+  // Without s_u and the unit weight (the headcut's) there is no comparison.
+  auto no_su = s;
+  no_su.soil.undrained_shear_strength.reset();
+  EXPECT_FALSE(breach_scene_for(no_su).has_value());
+}
 
 // The dam nodes lie on the trapezoid, no element is longer than the cell size, and the three
 // corners (toe, crest edges, toe) are nodes, so the discharge sections sit on mesh lines.

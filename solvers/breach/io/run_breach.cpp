@@ -40,6 +40,15 @@ double or_nan(const std::optional<double>& v) {
 
 }  // namespace
 
+const std::vector<io::CsvColumn>& hydrograph_columns() { return kColumns; }
+
+std::vector<double> hydrograph_row(const Sample& s) {
+  const Flows& f = s.flows;
+  return {s.time, f.inflow, f.total(), f.breach, f.crest, f.spillway, f.level, f.storage,
+          static_cast<double>(static_cast<int>(s.stage)), s.stress, s.face_erosion, s.headcut_position,
+          s.headcut_height, s.invert, s.bottom_width, s.top_width, s.eroded_volume};
+}
+
 Summary make_summary(const Result& r) {
   Summary s;
   s.set("peak_outflow", r.peak_outflow, "m^3/s");
@@ -94,10 +103,7 @@ int run_breach(const mpi::Comm& comm, const config::Config& cfg, const RunOption
   {
     ScopedPhase phase(timers, "integrate");
     result = simulate(scene, [&](const Sample& s) {
-      const Flows& f = s.flows;
-      csv.append({s.time, f.inflow, f.total(), f.breach, f.crest, f.spillway, f.level, f.storage,
-                  static_cast<double>(static_cast<int>(s.stage)), s.stress, s.face_erosion, s.headcut_position,
-                  s.headcut_height, s.invert, s.bottom_width, s.top_width, s.eroded_volume});
+      csv.append(hydrograph_row(s));
       if (s.stage != last) log.info("t = {:.3f} h: {}", s.time / 3600.0, stage_name(s.stage));  // as sampled
       last = s.stage;
     });

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/config/config.hpp"
+#include "core/io/csv_series.hpp"
 #include "core/log/logger.hpp"
 #include "core/mpi/comm.hpp"
 #include "core/run/run_record.hpp"
@@ -31,5 +32,10 @@ int run_breach(const mpi::Comm& comm, const config::Config& scene, const RunOpti
 
 // The summary.json content of a result (also used by studies that keep summaries in memory).
 Summary make_summary(const Result& result);
+
+// hydrograph.csv: its columns, and the row of one sample (also written by foam-erosion's
+// breach-model comparison).
+const std::vector<io::CsvColumn>& hydrograph_columns();
+std::vector<double> hydrograph_row(const Sample& sample);
 
 }  // namespace suite::breach

@@ -13,6 +13,7 @@
 #include "core/run/signals.hpp"
 #include "solvers/foam_erosion_fem/coupling/discharge.hpp"
 #include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/io/breach_comparison.hpp"
 #include "solvers/foam_erosion_fem/io/coupled_loop.hpp"
 #include "solvers/foam_erosion_fem/io/prepare_case.hpp"
 
@@ -20,7 +21,9 @@ namespace suite::foam_erosion {
 
 namespace {
 
-// discharge.csv and the peak discharge of each section (m^3/s over the whole crest length).
+// discharge.csv, and the peak discharge and water volume of each section (over the whole crest
+// length). interFoam records each step's discharge at the step's end, so a value stands for the
+// step before it.
 void write_discharge_outputs(const std::filesystem::path& case_dir, const std::filesystem::path& out, double scale,
                              Summary& summary) {
   const std::vector<std::string> sections{"inlet", "crest", "toe", "outlet"};
@@ -28,9 +31,14 @@ void write_discharge_outputs(const std::filesystem::path& case_dir, const std::f
   for (const auto& name : sections) series.push_back(read_discharge(case_dir, name));
   write_discharge_csv(out / "discharge.csv", sections, series, scale);
   for (std::size_t k = 0; k < sections.size(); ++k) {
-    double peak = 0.0;
-    for (double v : series[k].water) peak = std::max(peak, std::abs(v) * scale);
+    const auto& d = series[k];
+    double peak = 0.0, volume = 0.0;
+    for (std::size_t i = 0; i < d.water.size(); ++i) {
+      peak = std::max(peak, std::abs(d.water[i]) * scale);
+      if (i > 0) volume += (d.time[i] - d.time[i - 1]) * d.water[i] * scale;
+    }
     summary.set("peak_" + sections[k] + "_discharge", peak, "m^3/s");
+    summary.set(sections[k] + "_water_volume", std::abs(volume), "m^3");  // the inlet's flux is negative (inward)
   }
 }
 
@@ -118,6 +126,7 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
     } catch (const FoamReadError& e) {
       log.warn("no discharge record written: {}", e.what());
     }
+    write_breach_comparison(scene, out, summary, log);
   }
   summary.set("status", status);
   summary.write(out / "summary.json");

@@ -1,6 +1,8 @@
 """Charts of a foam-erosion output folder: the dam surface after each coupling step
 (profiles.csv) and the discharge through the inlet, crest, toe and outlet sections over time
-(discharge.csv), with the eroded area per step (erosion.csv) when there is one.
+(discharge.csv), with the eroded volume per step (erosion.csv) when there is one, beside the
+breach model's outflow and eroded volume on the same dam (breach_model/hydrograph.csv) when the
+run made that comparison.
 
     /usr/bin/python3 solvers/foam_erosion_fem/plot/plot_foam_erosion.py OUT_DIR
 
@@ -47,13 +49,22 @@ def main(out):
         fig, ax = plt.subplots(figsize=(8, 3.6))
         for name in ("inlet", "crest", "toe", "outlet"):
             ax.plot(t, [float(r[f"{name}_Q_m3_s"]) for r in rows], lw=1, label=name)
+        breach = os.path.join(out, "breach_model", "hydrograph.csv")
+        b = read(breach) if os.path.exists(breach) else None
+        if b:
+            ax.plot([float(r["time [s]"]) for r in b], [float(r["outflow [m^3/s]"]) for r in b], "k:", lw=1.5,
+                    label="breach model: outflow")
         erosion = os.path.join(out, "erosion.csv")
-        if os.path.exists(erosion):
-            e = read(erosion)
+        if os.path.exists(erosion) or b:
             ax2 = ax.twinx()
-            ax2.step([float(r["time_s"]) for r in e], [float(r["total_eroded_area_m2_per_m"]) for r in e],
-                     "k--", where="post", lw=1, label="eroded area")
-            ax2.set_ylabel("eroded area (m^2 per m)")
+            if os.path.exists(erosion):
+                e = read(erosion)
+                ax2.step([0.0] + [float(r["time_s"]) for r in e], [0.0] + [float(r["total_eroded_volume_m3"]) for r in e],
+                         "k--", where="post", lw=1, label="eroded volume")
+            if b:
+                ax2.plot([float(r["time [s]"]) for r in b], [float(r["eroded_volume [m^3]"]) for r in b], "-.",
+                         color="0.4", lw=1, label="breach model: eroded volume")
+            ax2.set_ylabel("eroded volume (m^3)")
             ax2.legend(loc="lower right", fontsize=8)
         ax.set_xlabel("t (s)")
         ax.set_ylabel("water discharge Q (m^3/s)")

@@ -98,6 +98,9 @@ FoamScene FoamScene::read(const config::Section& root) {
   sc.soil.kd = soil.quantity("erodibility", "m^3/(N s)", Range::at_least(0));
   sc.soil.tau_c = soil.quantity("critical_shear_stress", "Pa", 0.0, Range::at_least(0));
   if (soil.has("repose_angle")) sc.soil.repose_angle = soil.quantity("repose_angle", "deg", Range{0.0, 90.0, true, true});
+  if (soil.has("undrained_shear_strength"))
+    sc.soil.undrained_shear_strength = soil.quantity("undrained_shear_strength", "Pa", Range::at_least(0));
+  if (soil.has("unit_weight")) sc.soil.unit_weight = soil.quantity("unit_weight", "N/m^3", Range::positive());
 
   sc.domain = read_domain(root.section_or_empty("domain"), sc.dam);
   const auto reservoir = root.section("reservoir");

@@ -5,7 +5,8 @@
 //   dam:       {height, crest_width, crest_length, upstream_slope, downstream_slope, foundation}
 //              the breach model's description (solvers/breach/geometry/embankment.hpp): the same
 //              block runs in both; slopes H:V
-//   soil:      {erodibility, critical_shear_stress, repose_angle}   # kd, tau_c; repose optional
+//   soil:      {erodibility, critical_shear_stress, repose_angle,   # kd, tau_c; repose optional
+//               undrained_shear_strength, unit_weight}              # optional: the breach model
 //   reservoir: {initial_level, tailwater_level}                     # tailwater optional
 //   inflow:    the breach model's `inflow` section (hydrograph.hpp): total discharge over the
 //              crest length; the 2D case carries q = Q / crest_length per metre
@@ -65,6 +66,10 @@ struct SoilErosion {
   double kd = 0.0;                       // m^3/(N s)
   double tau_c = 0.0;                    // Pa
   std::optional<double> repose_angle;    // degrees
+  // Only for the breach-model run beside the coupled one (io/breach_comparison.hpp): its headcut
+  // needs them. Without both there is no comparison.
+  std::optional<double> undrained_shear_strength;  // s_u, Pa
+  std::optional<double> unit_weight;               // gamma_t, N/m^3
 };
 
 struct CouplingSettings {
