@@ -1,15 +1,21 @@
 #!/usr/bin/env bash
 # An mpm2grid run stopped twice (time.max_steps) and continued with --restart latest produces
-# exactly the same outputs as an uninterrupted run: summary.json, series.csv, the XDMF series
-# and the data of every particle file (h5diff). A SIGTERM mid-run checkpoints and stops, and its
-# restart matches too. The scene is the embedded water column, shortened.
-#   restart_is_bitwise.sh WORK_DIR EXE
+# exactly the same outputs as an uninterrupted run: summary.json, series.csv, profiles.csv, the
+# XDMF series and the data of every particle file (h5diff). A SIGTERM mid-run checkpoints and
+# stops, and its restart matches too. The scene is the embedded water column, shortened, or the
+# scene file and overrides given (e.g. a dam scene with an active inlet); SIGNAL_END is the end
+# time of the SIGTERM run ("none": skip it).
+#   restart_is_bitwise.sh WORK_DIR EXE [SIGNAL_END [SCENE_FILE OVERRIDES...]]
 set -euo pipefail
-work=$1 exe=$2
-scene=(time.end=0.05s time.output=0.01s checkpoint.every_steps=100000)
+work=$1 exe=$2 signal_end=${3:-0.2s}
+if [ $# -gt 3 ]; then
+  scene=("${@:4}" checkpoint.every_steps=100000)
+else
+  scene=(time.end=0.05s time.output=0.01s checkpoint.every_steps=100000)
+fi
 rm -rf "$work" && mkdir -p "$work"
 same() {
-  for f in summary.json series.csv particles.xmf; do
+  for f in summary.json series.csv profiles.csv particles.xmf; do
     cmp "$1/$f" "$2/$f" || { echo "$f differs between $1 and $2"; diff "$1/$f" "$2/$f" | head; exit 1; }
   done
   [ "$(ls "$1/particles")" = "$(ls "$2/particles")" ] || { echo "particle files differ in number or names"; exit 1; }
@@ -24,15 +30,16 @@ grep -q '"status": "completed"' "$work/pieces/run.json"
 same "$work/straight" "$work/pieces"
 echo "restarted twice (steps 137, 437): outputs identical to the uninterrupted run"
 
+[ "$signal_end" = none ] && exit 0
 # SIGTERM (a Slurm time limit) mid-run: checkpoint and stop, then restart.
-"$exe" --out "$work/signal" "${scene[@]}" time.end=0.2s >"$work/signal.log" 2>&1 &
+"$exe" --out "$work/signal" "${scene[@]}" time.end=$signal_end >"$work/signal.log" 2>&1 &
 pid=$!
 for _ in $(seq 600); do grep -q "water and" "$work/signal.log" && break; sleep 0.1; done
 sleep 0.5
 kill -TERM $pid
 wait $pid || true
 grep -q '"status": "stopped: checkpoint and stop (SIGTERM/SIGINT)"' "$work/signal/run.json"
-"$exe" --out "$work/signal" "${scene[@]}" time.end=0.2s --restart latest --log-level warn
-"$exe" --out "$work/signal_straight" "${scene[@]}" time.end=0.2s --log-level warn
+"$exe" --out "$work/signal" "${scene[@]}" time.end=$signal_end --restart latest --log-level warn
+"$exe" --out "$work/signal_straight" "${scene[@]}" time.end=$signal_end --log-level warn
 same "$work/signal_straight" "$work/signal"
 echo "SIGTERM checkpointed and stopped; the restart matched the uninterrupted run"

@@ -57,16 +57,24 @@ void read_species(checkpoint::Reader& r, const std::string& s, Particles<Dim>& P
 
 }  // namespace
 
+// The run's scalars, in this order, then the outflow momentum (Dim values).
+constexpr std::size_t kScalars = 14;
+
 template <int Dim>
 void write_state(checkpoint::Writer& w, const Simulation<Dim>& sim, const RunProgress& progress) {
   write_species(w, "water", sim.water());
   write_species(w, "soil", sim.soil());
   const auto& o = sim.outflow();
-  std::vector<double> scalars{sim.time(),      o.water_mass,           o.soil_mass,
-                              progress.next_sample, progress.next_output, progress.smallest_dt};
+  const auto& q = progress.outlet;
+  const InletState inlet = sim.inlet() ? sim.inlet()->state() : InletState{};
+  std::vector<double> scalars{sim.time(),         o.water_mass,          o.soil_mass,
+                              progress.next_sample, progress.next_output, progress.smallest_dt,
+                              q.last_time,        q.last_water_mass,     q.last_soil_mass,
+                              q.peak_water_discharge, q.peak_time,       progress.initial_soil_volume,
+                              inlet.length,       inlet.mass};
   for (int d = 0; d < Dim; ++d) scalars.push_back(o.momentum[d]);
   w.write<double>("run/scalars", scalars);
-  std::vector<long long> counters{sim.steps(), progress.files};
+  std::vector<long long> counters{sim.steps(), progress.files, inlet.layers};
   w.write<long long>("run/counters", counters);
   // Limiter names and counts as "name=count" lines.
   std::string limiters;
@@ -80,13 +88,16 @@ void read_state(checkpoint::Reader& r, Simulation<Dim>& sim, RunProgress& progre
   read_species(r, "soil", sim.soil());
   const auto scalars = r.read<double>("run/scalars");
   const auto counters = r.read<long long>("run/counters");
-  if (scalars.size() != 6 + Dim || counters.size() != 2)
+  if (scalars.size() != kScalars + Dim || counters.size() != 3)
     throw LibraryError("checkpoint run record has another layout than this build's");
   Outflow<Dim> o;
   o.water_mass = scalars[1], o.soil_mass = scalars[2];
-  for (int d = 0; d < Dim; ++d) o.momentum[d] = scalars[6 + d];
-  sim.restore(scalars[0], counters[0], o);
+  for (int d = 0; d < Dim; ++d) o.momentum[d] = scalars[kScalars + d];
+  const InletState inlet{scalars[12], counters[2], scalars[13]};
+  sim.restore(scalars[0], counters[0], o, inlet);
   progress.next_sample = scalars[3], progress.next_output = scalars[4], progress.smallest_dt = scalars[5];
+  progress.outlet = {scalars[6], scalars[7], scalars[8], scalars[9], scalars[10]};
+  progress.initial_soil_volume = scalars[11];
   progress.files = counters[1];
   progress.limiters.clear();
   const auto bytes = r.read_bytes("run/limiters");

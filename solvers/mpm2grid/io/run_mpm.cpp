@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <optional>
 
 #include <fmt/format.h>
@@ -21,16 +22,37 @@
 #include "core/petsc/petsc_session.hpp"
 #include "core/run/signals.hpp"
 #include "solvers/mpm2grid/io/checkpoint_state.hpp"
+#include "solvers/mpm2grid/io/dam_measures.hpp"
 #include "solvers/mpm2grid/io/particle_output.hpp"
 #include "solvers/mpm2grid/scenes/scene.hpp"
 
 namespace suite::mpm2grid {
 namespace {
 
-const std::vector<io::CsvColumn> kColumns{
-    {"time", "s"},          {"dt", "s"},           {"water_front", "m"},      {"water_mass", "kg"},
-    {"soil_mass", "kg"},    {"outflow_water_mass", "kg"}, {"outflow_soil_mass", "kg"}, {"kinetic_energy", "J"},
-    {"water_particles", ""}, {"soil_particles", ""}};
+// series.csv. Masses are per metre of thickness in 2D (kg/m), as are the volumes (m^2) and the
+// discharges (m^2/s).
+template <int Dim>
+std::vector<io::CsvColumn> series_columns() {
+  const std::string volume = Dim == 2 ? "m^2" : "m^3", discharge = Dim == 2 ? "m^2/s" : "m^3/s";
+  return {{"time", "s"},
+          {"dt", "s"},
+          {"water_front", "m"},
+          {"water_mass", "kg"},
+          {"soil_mass", "kg"},
+          {"outflow_water_mass", "kg"},
+          {"outflow_soil_mass", "kg"},
+          {"inflow_water_mass", "kg"},
+          {"outflow_water_discharge", discharge},
+          {"outflow_soil_discharge", discharge},
+          {"eroded_soil_volume", volume},
+          {"crest_height", "m"},
+          {"kinetic_energy", "J"},
+          {"water_particles", ""},
+          {"soil_particles", ""}};
+}
+
+// profiles.csv: the crest profile (io/dam_measures.hpp) at every particle output time.
+const std::vector<io::CsvColumn> kProfileColumns{{"time", "s"}, {"x", "m"}, {"top_y", "m"}};
 
 // The farthest water particle along x plus half a particle spacing: the surge front of a
 // collapsing column (Martin & Moyce measured the leading edge).
@@ -52,7 +74,7 @@ bool finite_state(const Particles<Dim>& P, std::size_t& bad) {
 }
 
 constexpr const char* kSolver = "mpm2grid";
-constexpr long long kCheckpointFormat = 1;
+constexpr long long kCheckpointFormat = 2;  // 2: inlet state, outlet record, initial soil volume
 
 template <int Dim>
 class MpmRun {
@@ -86,6 +108,7 @@ class MpmRun {
       // a fresh start: checkpoints of an earlier run are stale
       checkpoint::discard_after(comm_, checkpoints_, "checkpoint", -1, log_);
       seed_particles(scene_, sim_);
+      p_.initial_soil_volume = soil_in_dam();
       p_.next_sample = scene_.time.series;
       p_.next_output = scene_.time.output;
       p_.smallest_dt = std::numeric_limits<double>::infinity();
@@ -95,6 +118,16 @@ class MpmRun {
     }
     log_.info("{}D scene {}: h = {} m, {} water and {} soil particles, drag {}", Dim, scene_.name,
               scene_.simulation.h, sim_.water().size(), sim_.soil().size(), drag_name(scene_.simulation.drag));
+    if (sim_.soil().size() > 0) {
+      const auto& soil = scene_.simulation.soil.material;
+      log_.info("soil: dry cohesion c0 = {:.6g} Pa, friction angle {:.4g} deg", soil.cohesion,
+                soil.friction_angle * 180 / std::numbers::pi);
+    }
+    if (const auto* inlet = sim_.inlet())
+      log_.info("inlet on x_low: {} particle rows ({} m of the {} m asked for), q(0) = {} m^2/s per metre, v(0) = {} "
+                "m/s; layer mass {} kg",
+                inlet->rows(), inlet->section_height(), inlet->settings().height, inlet->settings().discharge(0),
+                inlet->velocity(0), inlet->layer_mass());
     SignalWatcher signals;
     checkpoint::Schedule schedule(scene_.checkpoints);
     ProgressLine progress(log_, sim_.time(), scene_.time.end);
@@ -160,27 +193,43 @@ class MpmRun {
     mpi::collective_try(comm_, [&] {
       if (!comm_.is_root()) return;
       const double t = sim_.time();
-      csv_ = resuming ? io::CsvSeries::resume_at(out_ / "series.csv", kColumns, t)
-                      : io::CsvSeries(out_ / "series.csv", kColumns);
+      csv_ = resuming ? io::CsvSeries::resume_at(out_ / "series.csv", series_columns<Dim>(), t)
+                      : io::CsvSeries(out_ / "series.csv", series_columns<Dim>());
+      profiles_ = resuming ? io::CsvSeries::resume_at(out_ / "profiles.csv", kProfileColumns, t)
+                           : io::CsvSeries(out_ / "profiles.csv", kProfileColumns);
       xdmf_.emplace(out_ / "particles.xmf");
       if (resuming) xdmf_->resume_at(t);
     });
   }
 
+  // The outlet record moves on every sample, on every rank (it is checkpointed state).
   void sample(double dt) {
-    if (!csv_) return;
     ScopedPhase phase(timers_, "output");
+    const auto& s = scene_.simulation;
+    const auto& out = sim_.outflow();
+    const Discharges q = p_.outlet.sample(sim_.time(), out.water_mass, out.soil_mass, s.water.density, s.soil.density);
+    if (!csv_) return;
     csv_->append({sim_.time(), dt, water_front(sim_, half_spacing_), sim_.water().total_mass(),
-                  sim_.soil().total_mass(), sim_.outflow().water_mass, sim_.outflow().soil_mass,
-                  sim_.kinetic_energy(), static_cast<double>(sim_.water().size()),
-                  static_cast<double>(sim_.soil().size())});
+                  sim_.soil().total_mass(), out.water_mass, out.soil_mass, sim_.inflow_mass(), q.water, q.soil,
+                  eroded_volume(), crest_height(profile(), floor()), sim_.kinetic_energy(),
+                  static_cast<double>(sim_.water().size()), static_cast<double>(sim_.soil().size())});
   }
+
+  double floor() const { return scene_.simulation.walls.lo[1]; }
+  std::vector<ColumnTop> profile() const {
+    return crest_profile(sim_.soil(), scene_.simulation.walls.lo[0], scene_.simulation.h, half_spacing_);
+  }
+  // Soil still in the dam's initial cross-section grown by half a particle spacing.
+  double soil_in_dam() const { return volume_within(sim_.soil(), scene_.soil_regions, half_spacing_); }
+  double eroded_volume() const { return p_.initial_soil_volume - soil_in_dam(); }
 
   void output() {
     ScopedPhase phase(timers_, "output");
     write_particles(comm_, sim_, out_, fmt::format("particles/step_{:06d}.h5", sim_.steps()),
                     xdmf_ ? &*xdmf_ : nullptr);
     ++p_.files;
+    if (profiles_ && sim_.soil().size() > 0)
+      for (const auto& c : profile()) profiles_->append({sim_.time(), c.x, c.top});
   }
 
   void write_checkpoint() {
@@ -221,6 +270,16 @@ class MpmRun {
     summary.set("soil_mass", sim_.soil().total_mass(), "kg");
     summary.set("outflow_water_mass", sim_.outflow().water_mass, "kg");
     summary.set("outflow_soil_mass", sim_.outflow().soil_mass, "kg");
+    const auto& s = scene_.simulation;
+    const std::string volume = Dim == 2 ? "m^2" : "m^3", discharge = Dim == 2 ? "m^2/s" : "m^3/s";
+    summary.set("inflow_water_volume", sim_.inflow_mass() / s.water.density, volume);
+    summary.set("outflow_water_volume", sim_.outflow().water_mass / s.water.density, volume);
+    summary.set("outflow_soil_volume", sim_.outflow().soil_mass / s.soil.density, volume);
+    summary.set("peak_water_outflow", p_.outlet.peak_water_discharge, discharge);
+    summary.set("time_to_peak", p_.outlet.peak_time, "s");
+    summary.set("initial_soil_volume", p_.initial_soil_volume, volume);
+    summary.set("eroded_soil_volume", eroded_volume(), volume);
+    summary.set("final_crest_height", crest_height(profile(), floor()), "m");
     mpi::collective_try(comm_, [&] {
       if (comm_.is_root()) summary.write(out_ / "summary.json");
     });
@@ -264,6 +323,7 @@ class MpmRun {
   long long drag_iterations_ = 0;  // most KSP iterations of one consistent drag solve in this run
   RunProgress p_;
   std::optional<io::CsvSeries> csv_;    // rank 0 only
+  std::optional<io::CsvSeries> profiles_;  // rank 0 only
   std::optional<io::XdmfSeries> xdmf_;  // rank 0 only
 };
 

@@ -1,6 +1,8 @@
 #pragma once
 // An mpm2grid run from a scene: seeds the particles, steps to time.end with the adaptive dt, and
-// writes into the output folder series.csv (time series with units), particles/step_NNNNNN.h5 +
+// writes into the output folder series.csv (time series with units: masses, the inflow, the
+// outflow discharges, the eroded soil volume and crest height, io/dam_measures.hpp), profiles.csv
+// (the crest profile at every output time), particles/step_NNNNNN.h5 +
 // particles.xmf (ParaView), summary.json, run.json, effective_config.yaml, log.txt and
 // checkpoints/ (every checkpoint.every_steps steps or checkpoint.every of wall time, on SIGUSR1,
 // and on SIGTERM/SIGINT before stopping; a restart continues bit for bit on the same rank count).

@@ -160,6 +160,23 @@ struct HenckyDruckerPrager {
   ReturnResult<Dim> project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const;
 };
 
+// The dry cohesion c0 (Pa) of the stress-space cone above equivalent to a strain-space cohesion
+// c_C (dimensionless), the form of Klar et al. 2016 / Tampubolon et al. 2017 that the source
+// dissertation's Table 3.4 gives (0.002 - 0.01). That form tests the trial strain shifted by
+// (c_C / (Dim alpha)) 1, alpha = sqrt(2/3) 2 sin(phi_f) / (3 - sin(phi_f)) (shared/background/
+// mpm.md, section 3.2), against the cohesionless cone, whose apex is at tr(eps) = 0: the shifted
+// cone's apex is at the tensile volumetric log strain tr(eps) = c_C / alpha. The cone above has
+// its apex at tr(eps) = q_c / (M K) = c0 / (K tan(phi_f)); equal apexes give
+//   c0 = K tan(phi_f) c_C / alpha      (K the bulk modulus, Pa; phi_f > 0).
+// In 3D the two cones also share their slope in (p, q) (Klar's alpha gives exactly M), so they
+// are the same surface; in 2D Klar's cone is flatter (slope 2/3 of M), and the mapping matches
+// the apex, i.e. the tension the dry soil holds, while the friction stays Mohr-Coulomb's M.
+inline double cohesion_of_strain_shift(double c_C, double bulk_modulus, double friction_angle) {
+  const double s = std::sin(friction_angle);
+  const double alpha = std::sqrt(2.0 / 3.0) * 2.0 * s / (3.0 - s);
+  return bulk_modulus * std::tan(friction_angle) * c_C / alpha;
+}
+
 // The member templates above are defined, and instantiated for Dim = 2 and 3, in
 // hencky_drucker_prager.cpp (link it; callers never instantiate them).
 

@@ -13,6 +13,7 @@ namespace suite::mpm2grid {
 template <int Dim>
 Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm)
     : s_(settings), grid_(settings.h), comm_(std::move(comm)) {
+  if (s_.inlet) inlet_.emplace(*s_.inlet);
   if (s_.drag != DragScheme::consistent) return;
   if (!comm_) throw std::invalid_argument("the consistent drag solve needs a communicator");
   consistent_ = std::make_unique<ConsistentDrag<Dim>>(*comm_, "drag_");
@@ -75,10 +76,13 @@ void Simulation<Dim>::step(double dt) {
   }
   s_.walls.apply(grid_, water_nodes_);
   s_.walls.apply(grid_, soil_nodes_);
+  const double t_next = time_ + dt;
+  if (inlet_) inlet_->impose(grid_, water_nodes_, t_next);
   update_particles(dt);
   update_saturation();
   remove_outflow();
-  time_ += dt;
+  if (inlet_) inlet_->emit(t_next, water_);
+  time_ = t_next;
   ++steps_;
 }
 

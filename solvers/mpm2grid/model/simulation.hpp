@@ -7,7 +7,9 @@
 //   4. wall conditions on both grids;
 //   5. G2P per species, positions, F_E (soil, then the Drucker-Prager return mapping with the
 //      cohesion of the particle's saturation) and J (water);
-//   6. particles that left through an open side are removed and booked as outflow.
+//   6. particles that left through an open side are removed and booked as outflow; the inlet
+//      (boundary/inlet.hpp), if any, emits the water layers due (after setting the inflow
+//      velocity on its face's water nodes in step 4).
 // Saturation: the water grid's volume fraction phi_i = m_w,i / (rho_w h^Dim), and a soil
 // particle's S = clamp(sum_i w_ip phi_i / n, 0, 1), n the soil's porosity: pores full of water
 // give S = 1.
@@ -18,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "solvers/mpm2grid/boundary/inlet.hpp"
 #include "solvers/mpm2grid/boundary/walls.hpp"
 #include "solvers/mpm2grid/coupling/consistent_drag.hpp"
 #include "solvers/mpm2grid/coupling/drag_solve.hpp"
@@ -58,6 +61,7 @@ struct SimulationSettings {
   DragScheme drag = DragScheme::lumped;
   double cfl = 0.4;        // fraction of a cell a particle or a wave may cross per step
   double dt_max = 1e-3;    // s
+  std::optional<InletSettings<Dim>> inlet;  // water inlet on the x_low side, if any
 };
 
 // What limits the time step, for the log.
@@ -87,6 +91,10 @@ class Simulation {
   const SimulationSettings<Dim>& settings() const { return s_; }
   const BlockGrid<Dim>& grid() const { return grid_; }
   const Outflow<Dim>& outflow() const { return outflow_; }
+  // The inlet, or nullptr when the scene has none.
+  const Inlet<Dim>* inlet() const { return inlet_ ? &*inlet_ : nullptr; }
+  // Water mass the inlet has emitted, kg (0 without an inlet).
+  double inflow_mass() const { return inlet_ ? inlet_->state().mass : 0.0; }
 
   double time() const { return time_; }
   // The consistent drag's last KSP solve (zero before the first, or for the other schemes).
@@ -102,10 +110,11 @@ class Simulation {
 
   // Sets the clock, step count and outflow record of a run read back from a checkpoint (the
   // particles are set through water() and soil()).
-  void restore(double time, long long steps, const Outflow<Dim>& outflow) {
+  void restore(double time, long long steps, const Outflow<Dim>& outflow, const InletState& inlet) {
     time_ = time;
     steps_ = steps;
     outflow_ = outflow;
+    if (inlet_) inlet_->restore(inlet);
   }
 
   // Kinetic energy of both species, J (J/m in 2D).
@@ -128,6 +137,7 @@ class Simulation {
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;
   SolveStats drag_stats_{};
   Outflow<Dim> outflow_;
+  std::optional<Inlet<Dim>> inlet_;
   double time_ = 0;
   long long steps_ = 0;
 };

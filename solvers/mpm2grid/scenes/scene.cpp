@@ -1,11 +1,13 @@
 #include "solvers/mpm2grid/scenes/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "solvers/mpm2grid/scenes/read_inlet.hpp"
 
 namespace suite::mpm2grid {
 namespace {
@@ -77,17 +79,18 @@ void check_inside(const config::Section& s, const Region& r, const Vec<Dim>& lo,
 }  // namespace
 
 template <int Dim>
-bool Region::contains(const Vec<Dim>& x) const {
+bool Region::contains(const Vec<Dim>& x, double margin) const {
   if (kind == Kind::box) {
     for (int d = 0; d < Dim; ++d)
-      if (x[d] < lo[d] || x[d] >= hi[d]) return false;
+      if (x[d] < lo[d] - margin || x[d] >= hi[d] + margin) return false;
     return true;
   }
   const double y = x[1] - floor;
-  if (y < 0 || y >= height) return false;
-  const double left = toe + y / upstream_slope;
-  const double right = toe + height / upstream_slope + crest_width + (height - y) / downstream_slope;
-  return x[0] >= left && x[0] < right;
+  if (y < -margin || y >= height + margin) return false;
+  const double yc = std::clamp(y, 0.0, height);  // = y without a margin
+  const double left = toe + yc / upstream_slope;
+  const double right = toe + height / upstream_slope + crest_width + (height - yc) / downstream_slope;
+  return x[0] >= left - margin && x[0] < right + margin;
 }
 
 double Region::trapezoid_area() const {
@@ -144,14 +147,29 @@ Scene<Dim> read_scene(const config::Config& cfg) {
     const double young = s->quantity("young", "Pa", Range::positive());
     const double poisson = s->number("poisson", 0.3, Range{-1.0, 0.5, true, true});
     const double phi = s->quantity("friction_angle", "rad", Range::between(0.0, 1.4));
-    const double c0 = s->quantity("cohesion", "Pa", 0.0, Range::at_least(0));
+    // The cohesion in Pa, or the dissertation's dimensionless strain-space c_C mapped to Pa
+    // (materials/hencky_drucker_prager.hpp, cohesion_of_strain_shift).
+    const bool shift = s->has("cohesion_shift");
+    if (shift && s->has("cohesion"))
+      s->reject("cohesion_shift", "give cohesion (Pa) or cohesion_shift (the dimensionless c_C), not both");
+    const double c0 = shift ? 0.0 : s->quantity("cohesion", "Pa", 0.0, Range::at_least(0));
     sim.soil.material = HenckyDruckerPrager::from_young(young, poisson, phi, c0, s->get<bool>("volume_correction", true));
+    if (shift) {
+      const double c_C = s->number("cohesion_shift", Range::at_least(0));
+      if (!(phi > 0)) s->reject("cohesion_shift", "needs a friction_angle > 0 (the strain-space cone's slope)");
+      sim.soil.material.cohesion =
+          cohesion_of_strain_shift(c_C, sim.soil.material.template bulk_modulus<Dim>(), phi);
+    }
     sim.soil.porosity = s->number("porosity", 0.4, Range{0.0, 1.0, true, true});
     sim.soil.conductivity = s->quantity("conductivity", "m/s", 1e-4, Range::positive());
     sc.soil_regions = read_regions(*s, Dim, lo[1]);
     for (const auto& r : sc.soil_regions) check_inside<Dim>(*s, r, sim.walls.lo, sim.walls.hi, "soil");
   }
-  if (sc.water_regions.empty() && sc.soil_regions.empty())
+  if (const auto inlet = root.optional_section("inlet")) {
+    if (!root.has("water")) root.reject("inlet", "an inlet needs the water: section (density, bulk_modulus, regions)");
+    sim.inlet = read_inlet<Dim>(*inlet, sim.walls.lo, sim.walls.hi, sim.h / sc.particles_per_cell, sim.water.density);
+  }
+  if (sc.water_regions.empty() && sc.soil_regions.empty() && !sim.inlet)
     root.reject("water", "the scene has no material: give water: {regions: ...} or soil: {regions: ...}");
 
   const auto drag = root.choice("drag", {"lumped", "consistent", "explicit"}, "lumped");
@@ -178,6 +196,7 @@ std::vector<double> Scene<Dim>::fingerprint() const {
                         s.water.eos.gamma, s.soil.density, s.soil.porosity, s.soil.conductivity,
                         double(static_cast<int>(s.drag))};
   for (int d = 0; d < Dim; ++d) f.insert(f.end(), {s.walls.lo[d], s.walls.hi[d]});
+  if (s.inlet) f.insert(f.end(), {s.inlet->height, s.inlet->discharge(0), s.inlet->discharge.cumulative(time.end)});
   return f;
 }
 
@@ -212,8 +231,8 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim) {
   }
 }
 
-template bool Region::contains<2>(const Vec<2>&) const;
-template bool Region::contains<3>(const Vec<3>&) const;
+template bool Region::contains<2>(const Vec<2>&, double) const;
+template bool Region::contains<3>(const Vec<3>&, double) const;
 template struct Scene<2>;
 template struct Scene<3>;
 template Scene<2> read_scene<2>(const config::Config&);

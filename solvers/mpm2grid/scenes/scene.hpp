@@ -11,6 +11,7 @@
 //   gravity: 9.81 m/s^2                                      # along -y
 //   water: {density: 1000 kg/m^3, bulk_modulus: 57 kPa, gamma: 7,
 //           regions: [{box: {lo: [0, 0], hi: [0.05715, 0.1143]}}]}
+//   inlet: {height: 7.25 m, velocity: 2 m/s}     # or discharge: {columns, rows}: scenes/read_inlet.hpp
 //   soil: {density: 2000 kg/m^3, young: 10 MPa, poisson: 0.3, friction_angle: 30 deg, cohesion: 0 Pa,
 //          porosity: 0.4, conductivity: 1e-3 m/s,
 //          regions: [{trapezoid: {toe: 1.0, height: 3.75, crest_width: 6, upstream_slope: 0.8333,
@@ -20,6 +21,9 @@
 //   time: {end: 0.2 s, cfl: 0.4, dt_max: 1 ms, series: 2 ms, output: 20 ms, max_steps: 0}
 //   checkpoint: {every_steps: 1000, every: 30 min, keep: 2}      # and on SIGUSR1 / SIGTERM
 //
+// Soil cohesion: `cohesion` (Pa, c0 of dry soil), or `cohesion_shift` (the dissertation's
+// dimensionless strain-space c_C, mapped to c0 = K tan(phi_f) c_C / alpha, see
+// cohesion_of_strain_shift in materials/hencky_drucker_prager.hpp).
 // Regions: `box` {lo, hi} (m), or `trapezoid` (a dam cross-section in x-y standing on the
 // domain's floor, extruded over z in 3D): upstream toe at x = toe, height, crest width, slopes
 // as V/H. Water regions leave out the points inside soil regions.
@@ -38,8 +42,11 @@ struct Region {
   double toe = 0, height = 0, crest_width = 0, upstream_slope = 1, downstream_slope = 1;  // trapezoid
   double floor = 0;  // trapezoid: the y of its base (the domain's floor)
 
+  // True when x lies in the region ([lo, hi) per axis; the trapezoid's cross-section in x-y, half
+  // open at its right and top) grown outwards by `margin` (m) along the axes: the trapezoid's
+  // sides move by margin along x, its top up by margin and its base down by margin.
   template <int Dim>
-  bool contains(const Vec<Dim>& x) const;
+  bool contains(const Vec<Dim>& x, double margin = 0) const;
   double trapezoid_area() const;  // m^2
 };
 
