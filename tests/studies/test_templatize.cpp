@@ -3,6 +3,10 @@
 // places that hold no number are refused with the place named.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
 #include "studies/template/template.hpp"
 #include "studies/template/templatize.hpp"
 #include "tests/support/test_dirs.hpp"
@@ -69,3 +73,19 @@ TEST(Templatize, PlacesWithoutANumberAreRefused) {
 }
 
 }  // namespace
+
+// The shipped mpm2grid study's template (studies/examples/mpm2grid/) is still the scene it was
+// made from: given the scene's own cohesion and reservoir level it renders to the scene file
+// byte for byte, so a change to the scene that the template missed fails here.
+TEST(Templatize, ShippedMpm2gridTemplateRendersToItsScene) {
+  const std::filesystem::path src = SUITE_SOURCE_DIR;
+  const auto read = [](const std::filesystem::path& p) {
+    std::ifstream in(p);
+    EXPECT_TRUE(in) << p;
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const auto scene = read(src / "solvers/mpm2grid/scenes/table_3_4_example2.yaml");
+  const auto tmpl = Template::parse(read(src / "studies/examples/mpm2grid/table_3_4_example2.tmpl"), "table_3_4_example2.tmpl");
+  EXPECT_EQ(tmpl.names(), (std::vector<std::string>{"cC", "level"}));
+  EXPECT_EQ(tmpl.render({{"cC", 0.008}, {"level", 3.25}}), scene);
+}
