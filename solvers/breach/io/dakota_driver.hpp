@@ -1,10 +1,7 @@
 #pragma once
 // `breach scene.yaml --dakota params.in results.out`: the breach model as a Dakota analysis
-// driver (spec/studies.md). Each variable of the parameters file is named by a scene key and
-// overrides it (its value in the key's SI unit, e.g. soil.erodibility in m^3/(N s)); each
-// response is named by a key of summary.json and written, labelled, to the results file. Values
-// that make the scene invalid (a negative kd) or a response with no value write "FAIL", which
-// Dakota's failure capture understands; a broken parameters file is an InputError.
+// driver (core/dakota/analysis_driver.hpp: variables are scene keys, responses summary keys),
+// in-process: the summary is the library call's.
 #include <filesystem>
 #include <string>
 #include <vector>
