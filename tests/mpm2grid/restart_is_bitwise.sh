@@ -14,13 +14,7 @@ else
   scene=(time.end=0.05s time.output=0.01s checkpoint.every_steps=100000)
 fi
 rm -rf "$work" && mkdir -p "$work"
-same() {
-  for f in summary.json series.csv profiles.csv particles.xmf; do
-    cmp "$1/$f" "$2/$f" || { echo "$f differs between $1 and $2"; diff "$1/$f" "$2/$f" | head; exit 1; }
-  done
-  [ "$(ls "$1/particles")" = "$(ls "$2/particles")" ] || { echo "particle files differ in number or names"; exit 1; }
-  for f in "$1"/particles/*.h5; do h5diff "$f" "$2/particles/$(basename "$f")"; done
-}
+same() { "$(dirname "$0")/same_outputs.sh" "$1" "$2"; }
 "$exe" --out "$work/straight" "${scene[@]}" --log-level warn
 "$exe" --out "$work/pieces" "${scene[@]}" --log-level warn time.max_steps=137
 grep -q '"status": "stopped: time.max_steps = 137"' "$work/pieces/run.json"

@@ -5,6 +5,7 @@
 # those of an uninterrupted run byte for byte.
 #   demo_requeue.sh SOURCE_DIR BIN_DIR WORK_DIR LAUNCHER...
 set -euo pipefail
+source "$(dirname "$0")/requeue_helpers.sh"
 src=$1 bin=$2 work=$3; shift 3
 launcher=("$@")
 [ "$(id -u)" = 0 ] || { echo "needs root for the local Slurm; skipping"; exit 77; }
@@ -15,18 +16,12 @@ job=$(SUITE_BIN=$bin SUITE_OUT=$work/pieces sbatch --parsable --output="$work/jo
       "$src/slurm/suite-demo.sbatch" "${scene[@]}")
 job=${job%%;*}
 log=$work/job-$job.out
-state() { scontrol show job "$job" | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p'; }
+state() { job_state "$job"; }
 for _ in $(seq 600); do grep -q "Ritter dam break" "$log" 2>/dev/null && break; sleep 0.1; done
 grep -q "Ritter dam break" "$log" || { echo "the job did not start"; cat "$log"; scontrol show job "$job"; exit 1; }
 scancel --signal=USR1 --batch "$job"
-# Slurm holds a requeued job back for a while (BeginTime); release it at once here.
-# (The script's own message comes before `scontrol requeue` takes effect: wait for Slurm's count.)
-for _ in $(seq 600); do scontrol show job "$job" | grep -q "Restarts=1" && [ "$(state)" = PENDING ] && break; sleep 0.1; done
-# slurmd refuses a launch whose credential is not newer (in whole seconds) than the requeue's
-# revocation ("Job credential revoked", the job then FAILS): let a second pass first.
-sleep 2
-scontrol update JobId="$job" StartTime=now || true
-for _ in $(seq 900); do [ "$(state)" = COMPLETED ] && break; case "$(state)" in FAILED|CANCELLED|TIMEOUT) break ;; esac; sleep 0.2; done
+release_requeued_job "$job"
+wait_for_job_end "$job" 900
 cat "$log" | grep -v " step " || true
 scontrol show job "$job" | grep -E "JobState|Restarts|ExitCode"
 [ "$(state)" = COMPLETED ] || { echo "job ended $(state)"; exit 1; }

@@ -6,6 +6,7 @@
 # for byte.
 #   foam_erosion_requeue.sh SOURCE_DIR BIN_DIR WORK_DIR
 set -euo pipefail
+source "$(dirname "$0")/requeue_helpers.sh"
 src=$1 bin=$2 work=$3
 [ "$(id -u)" = 0 ] || { echo "needs root for the local Slurm; skipping"; exit 77; }
 scene=("reservoir.initial_level=0.368 m" "coupling.morphological_factor=300" "time.end=1.5 s")
@@ -15,17 +16,12 @@ job=$(SUITE_BIN=$bin SUITE_OUT=$work/pieces sbatch --parsable --ntasks 1 --outpu
       "$src/slurm/foam_erosion.sbatch" "${scene[@]}")
 job=${job%%;*}
 log=$work/job-$job.out
-state() { scontrol show job "$job" | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p'; }
+state() { job_state "$job"; }
 for _ in $(seq 1800); do grep -q '"step": 2' "$work/pieces/state.json" 2>/dev/null && break; sleep 0.1; done
 grep -q '"step": 2' "$work/pieces/state.json" || { echo "the run did not reach step 2"; cat "$log"; exit 1; }
 scancel --signal=USR1 --batch "$job"
-# (The script's own message comes before `scontrol requeue` takes effect: wait for Slurm's count.)
-for _ in $(seq 600); do scontrol show job "$job" | grep -q "Restarts=1" && [ "$(state)" = PENDING ] && break; sleep 0.1; done
-# slurmd refuses a launch whose credential is not newer (in whole seconds) than the requeue's
-# revocation ("Job credential revoked", the job then FAILS): let a second pass first.
-sleep 2
-scontrol update JobId="$job" StartTime=now || true
-for _ in $(seq 1800); do [ "$(state)" = COMPLETED ] && break; case "$(state)" in FAILED|CANCELLED|TIMEOUT) break ;; esac; sleep 0.2; done
+release_requeued_job "$job"
+wait_for_job_end "$job" 1800
 cat "$log"
 [ "$(state)" = COMPLETED ] || { echo "job ended $(state)"; exit 1; }
 grep -q "start 2:.*--restart latest" "$log" || { echo "the second start did not restart"; exit 1; }
