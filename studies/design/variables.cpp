@@ -24,10 +24,15 @@ std::vector<Variable> read_variables(const config::Section& root) {
     if (!seen.insert(v.name).second) s.reject("name", "is used by another variable");
     if (auto d = s.optional_section("distribution")) {
       v.distribution = read_distribution(*d);
+      // Without bounds the design's box is the 1e-6 and 1 - 1e-6 quantiles. They are not read as
+      // defaults: the effective study.yaml (which a resume and the MPI ranks read) would then
+      // hold them as explicit bounds, and explicit bounds truncate the distribution.
       const bool bounded = s.has("lower") || s.has("upper");
-      v.lower = s.number("lower", quantile(v.distribution, 1e-6), config::Range::any());
-      v.upper = s.number("upper", quantile(v.distribution, 1.0 - 1e-6), config::Range::any());
+      v.lower = quantile(v.distribution, 1e-6);
+      v.upper = quantile(v.distribution, 1.0 - 1e-6);
       if (bounded) {  // explicit bounds truncate the distribution (as Dakota does)
+        v.lower = s.number("lower", v.lower, config::Range::any());
+        v.upper = s.number("upper", v.upper, config::Range::any());
         v.distribution.truncation = std::make_pair(v.lower, v.upper);
         try {
           validate(v.distribution), quantile(v.distribution, 0.5);
