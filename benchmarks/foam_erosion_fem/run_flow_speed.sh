@@ -12,6 +12,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$root/build/release}
+here=$root/benchmarks/foam_erosion_fem
 repeats=${2:-3}
 out=$root/benchmarks/results/foam_erosion_fem
 mkdir -p "$out"
@@ -23,7 +24,7 @@ configs=(
   "adaptive 0.02 1" "adaptive 0.014 1" "adaptive 0.01 1"
   "fixed_1e-3 0.01 1" "fixed_5e-4 0.01 1" "adaptive 0.01 2"
 )
-echo "config,cell_size_m,ranks,repeat,cells,time_steps,flow_wall_s,wall_s_per_simulated_s,crest_volume_m3" > "$csv"
+echo "config,cell_size_m,ranks,repeat,$(/usr/bin/python3 "$here/run_metrics.py" --header)" > "$csv"
 for ((r = 1; r <= repeats; r++)); do
   for c in "${configs[@]}"; do
     read -r name h ranks <<< "$c"
@@ -33,19 +34,8 @@ for ((r = 1; r <= repeats; r++)); do
     rm -rf "$run"
     "$build/bin/foam-erosion" "${common[@]}" "mesh.cell_size=$h m" "mesh.far_cell_size=$(awk "BEGIN { print 3 * $h }") m" \
       "${extra[@]}" --out "$run" --log-level warn
-    /usr/bin/python3 - "$run" "$name" "$h" "$ranks" "$r" >> "$csv" <<'PY'
-import csv, json, sys
-run, name, h, ranks, r = sys.argv[1:6]
-summary = json.load(open(f"{run}/summary.json"))
-flow = json.load(open(f"{run}/run.json"))["phases"]["flow"]["max_s"]
-rows = list(csv.DictReader(open(f"{run}/discharge.csv")))
-t = [float(x["time_s"]) for x in rows]
-q = [float(x["crest_Q_m3_s"]) for x in rows]
-volume = sum((t[i] - t[i - 1]) * q[i] for i in range(1, len(t)))
-end = t[-1]
-print(f"{name},{h},{ranks},{r},{int(summary['cells'])},{int(summary['flow_steps'])},{flow:.3f},{flow / end:.3f},{volume:.6e}")
-PY
+    echo "$name,$h,$ranks,$r,$(/usr/bin/python3 "$here/run_metrics.py" "$run")" >> "$csv"
     tail -1 "$csv"
   done
 done
-/usr/bin/python3 "$root/benchmarks/foam_erosion_fem/plot_flow_speed.py" "$csv" "$out/flow_speed.png"
+/usr/bin/python3 "$here/plot_flow_speed.py" "$csv" "$out/flow_speed.png"
