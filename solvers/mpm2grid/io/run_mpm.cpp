@@ -24,6 +24,7 @@
 #include "solvers/mpm2grid/io/checkpoint_state.hpp"
 #include "solvers/mpm2grid/io/dam_measures.hpp"
 #include "solvers/mpm2grid/io/particle_output.hpp"
+#include "solvers/mpm2grid/model/blow_up.hpp"
 #include "solvers/mpm2grid/scenes/scene.hpp"
 
 namespace suite::mpm2grid {
@@ -61,16 +62,6 @@ double water_front(const Simulation<Dim>& sim, double half_spacing) {
   double front = -std::numeric_limits<double>::infinity();
   for (const auto& x : sim.water().x) front = std::max(front, x[0]);
   return sim.water().size() ? front + half_spacing : std::nan("");
-}
-
-template <int Dim>
-bool finite_state(const Particles<Dim>& P, std::size_t& bad) {
-  for (std::size_t p = 0; p < P.size(); ++p)
-    if (!P.x[p].allFinite() || !P.v[p].allFinite()) {
-      bad = p;
-      return false;
-    }
-  return true;
 }
 
 constexpr const char* kSolver = "mpm2grid";
@@ -169,14 +160,26 @@ class MpmRun {
     drag_iterations_ = std::max(drag_iterations_, static_cast<long long>(sim_.drag_stats().iterations));
     last_dt_ = dt;
     p_.smallest_dt = std::min(p_.smallest_dt, dt);
-    std::size_t bad = 0;
-    for (const auto* P : {&sim_.water(), &sim_.soil()})
-      if (!finite_state(*P, bad))
-        throw InputError(fmt::format(
-            "the run blew up at step {} (t = {:.6g} s, dt = {:.4g} s limited by {}): a {} particle's position or "
-            "velocity is not finite; the last good checkpoint is kept in {}; lower time.cfl or time.dt_max",
-            sim_.steps(), sim_.time(), dt, limit.limiter, P == &sim_.water() ? "water" : "soil",
-            checkpoints_.string()));
+    const double inlet_velocity = sim_.inlet() ? sim_.inlet()->velocity(sim_.time()) : 0.0;
+    const double speed_limit = BlowUpCheck::speed_limit(scene_.simulation, inlet_velocity);
+    for (const auto* P : {&sim_.water(), &sim_.soil()}) {
+      const auto scan = ParticleScan<Dim>::of(*P);
+      const char* species = P == &sim_.water() ? "water" : "soil";
+      const auto where = fmt::format("the run blew up at step {} (t = {:.6g} s, dt = {:.4g} s limited by {})",
+                                     sim_.steps(), sim_.time(), dt, limit.limiter);
+      const auto fix = fmt::format("the last good checkpoint is kept in {}; lower time.cfl or time.dt_max{}",
+                                   checkpoints_.string(),
+                                   scene_.simulation.drag == DragScheme::explicit_euler
+                                       ? ", or use drag: lumped (explicit drag is unstable above dt = 2 tau_d)"
+                                       : "");
+      if (!scan.finite)
+        throw InputError(fmt::format("{}: a {} particle's position or velocity is not finite; {}", where, species, fix));
+      if (scan.speed > speed_limit)
+        throw InputError(fmt::format("{}: energy blow-up, a {} particle moves at {:.4g} m/s, more than {} times the "
+                                     "{:.4g} m/s that falling through the domain and the inflow can give; {}",
+                                     where, species, scan.speed, BlowUpCheck::kFactor,
+                                     speed_limit / BlowUpCheck::kFactor, fix));
+    }
     const double end = scene_.time.end * (1 - 1e-12);
     if (sim_.time() >= p_.next_sample * (1 - 1e-12)) {
       sample(dt);
