@@ -21,22 +21,24 @@ namespace fs = std::filesystem;
 
 using suite::testing::read_file;
 
-// 3 x 3 over the default breach scene's kd (cm^3/(N s)) and s_u (kPa); kd's lower bound may be
-// set negative to provoke failed evaluations.
+// The default breach scene with kd (cm^3/(N s)) and s_u (kPa) as the variables.
+const std::string kModel =
+    "model:\n"
+    "  type: breach\n"
+    "  scene: " SUITE_BREACH_DEFAULT_SCENE
+    "\n"
+    "  set: {soil.erodibility: \"{kd} cm^3/(N s)\", soil.undrained_shear_strength: \"{su} kPa\"}\n"
+    "  responses: [peak_outflow, breach_initiation_time]\n";
+
+// 3 x 3 over kd and s_u; kd's lower bound may be set negative to provoke failed evaluations.
 std::string spec(double kd_lower = 10.0, int concurrency = 2) {
   return "variables:\n"
          "  - {name: kd, lower: " +
          std::to_string(kd_lower) +
          ", upper: 50}\n"
          "  - {name: su, lower: 5, upper: 30}\n"
-         "method: {type: multidim, partitions: 2}\n"
-         "model:\n"
-         "  type: breach\n"
-         "  scene: " SUITE_BREACH_DEFAULT_SCENE
-         "\n"
-         "  set: {soil.erodibility: \"{kd} cm^3/(N s)\", soil.undrained_shear_strength: \"{su} kPa\"}\n"
-         "  responses: [peak_outflow, breach_initiation_time]\n"
-         "execution: {concurrency: " +
+         "method: {type: multidim, partitions: 2}\n" +
+         kModel + "execution: {concurrency: " +
          std::to_string(concurrency) + "}\noutput: {plot: false}\n";
 }
 
@@ -96,14 +98,8 @@ TEST(StudyRun, KilledAndResumedLhsOverDistributionsGivesTheSameTable) {
   kill_and_resume("variables:\n"
                   "  - {name: kd, distribution: {type: lognormal, mean: 30, std: 10}}\n"
                   "  - {name: su, distribution: {type: uniform, lower: 5, upper: 30}}\n"
-                  "method: {type: sampling, sample_type: lhs, samples: 12, seed: 7}\n"
-                  "model:\n"
-                  "  type: breach\n"
-                  "  scene: " SUITE_BREACH_DEFAULT_SCENE
-                  "\n"
-                  "  set: {soil.erodibility: \"{kd} cm^3/(N s)\", soil.undrained_shear_strength: \"{su} kPa\"}\n"
-                  "  responses: [peak_outflow, breach_initiation_time]\n"
-                  "output: {plot: false}\n",
+                  "method: {type: sampling, sample_type: lhs, samples: 12, seed: 7}\n" +
+                      kModel + "output: {plot: false}\n",
                   12);
 }
 

@@ -21,7 +21,7 @@ Soil Soil::read(const config::Section& s) {
   } else {
     // 0.016: the Manning n DL Breach recommends for cohesive embankment soil (Wu 2016, report
     // v2016.4, Clarkson University); an input because it is a property of the soil.
-    soil.grain_roughness = s.quantity("grain_roughness", "1", 0.016, Range::positive());
+    soil.grain_roughness = s.quantity("grain_roughness", "1", Soil::kDefaultGrainRoughness, Range::positive());
   }
   return soil;
 }

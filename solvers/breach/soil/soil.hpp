@@ -14,6 +14,9 @@
 namespace suite::breach {
 
 struct Soil {
+  // The grain roughness of a scene that gives neither it nor d75 (soil.cpp says where it comes from).
+  static constexpr double kDefaultGrainRoughness = 0.016;
+
   double kd = 0.0;               // m^3/(N s); 1 cm^3/(N s) = 1e-6 m^3/(N s)
   double tau_c = 0.0;            // Pa
   double s_u = 0.0;              // Pa

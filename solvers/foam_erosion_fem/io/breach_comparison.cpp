@@ -34,7 +34,7 @@ std::optional<breach::Scene> breach_scene_for(const FoamScene& s) {
   b.soil.tau_c = s.soil.tau_c;
   b.soil.s_u = *s.soil.undrained_shear_strength;
   b.soil.gamma_t = *s.soil.unit_weight;
-  b.soil.grain_roughness = 0.016;  // the breach scene's default (bare soil)
+  b.soil.grain_roughness = breach::Soil::kDefaultGrainRoughness;  // bare soil, as a breach scene without it
   // The stage-storage as a table fine enough that its piecewise-constant area follows the
   // wedge's linear growth within 1/64 of the domain height.
   constexpr int rows = 64;
