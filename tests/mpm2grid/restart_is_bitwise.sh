@@ -6,6 +6,7 @@
 # scene file and overrides given (e.g. a dam scene with an active inlet); SIGNAL_END is the end
 # time of the SIGTERM run ("none": skip it).
 #   restart_is_bitwise.sh WORK_DIR EXE [SIGNAL_END [SCENE_FILE OVERRIDES...]]
+# LAUNCH (environment), if set, prefixes every run, e.g. "mpiexec -n 2": the same on 2 ranks.
 set -euo pipefail
 work=$1 exe=$2 signal_end=${3:-0.2s}
 if [ $# -gt 3 ]; then
@@ -15,25 +16,25 @@ else
 fi
 rm -rf "$work" && mkdir -p "$work"
 same() { "$(dirname "$0")/same_outputs.sh" "$1" "$2"; }
-"$exe" --out "$work/straight" "${scene[@]}" --log-level warn
-"$exe" --out "$work/pieces" "${scene[@]}" --log-level warn time.max_steps=137
+${LAUNCH:-} "$exe" --out "$work/straight" "${scene[@]}" --log-level warn
+${LAUNCH:-} "$exe" --out "$work/pieces" "${scene[@]}" --log-level warn time.max_steps=137
 grep -q '"status": "stopped: time.max_steps = 137"' "$work/pieces/run.json"
-"$exe" --out "$work/pieces" "${scene[@]}" --log-level warn --restart latest time.max_steps=300
-"$exe" --out "$work/pieces" "${scene[@]}" --log-level warn --restart latest
+${LAUNCH:-} "$exe" --out "$work/pieces" "${scene[@]}" --log-level warn --restart latest time.max_steps=300
+${LAUNCH:-} "$exe" --out "$work/pieces" "${scene[@]}" --log-level warn --restart latest
 grep -q '"status": "completed"' "$work/pieces/run.json"
 same "$work/straight" "$work/pieces"
 echo "restarted twice (steps 137, 437): outputs identical to the uninterrupted run"
 
 [ "$signal_end" = none ] && exit 0
 # SIGTERM (a Slurm time limit) mid-run: checkpoint and stop, then restart.
-"$exe" --out "$work/signal" "${scene[@]}" time.end=$signal_end >"$work/signal.log" 2>&1 &
+${LAUNCH:-} "$exe" --out "$work/signal" "${scene[@]}" time.end=$signal_end >"$work/signal.log" 2>&1 &
 pid=$!
 for _ in $(seq 600); do grep -q "water and" "$work/signal.log" && break; sleep 0.1; done
 sleep 0.5
 kill -TERM $pid
 wait $pid || true
 grep -q '"status": "stopped: checkpoint and stop (SIGTERM/SIGINT)"' "$work/signal/run.json"
-"$exe" --out "$work/signal" "${scene[@]}" time.end=$signal_end --restart latest --log-level warn
-"$exe" --out "$work/signal_straight" "${scene[@]}" time.end=$signal_end --log-level warn
+${LAUNCH:-} "$exe" --out "$work/signal" "${scene[@]}" time.end=$signal_end --restart latest --log-level warn
+${LAUNCH:-} "$exe" --out "$work/signal_straight" "${scene[@]}" time.end=$signal_end --log-level warn
 same "$work/signal_straight" "$work/signal"
 echo "SIGTERM checkpointed and stopped; the restart matched the uninterrupted run"

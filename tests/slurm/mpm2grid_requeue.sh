@@ -5,6 +5,7 @@
 # --signal=B:USR1@300 sends it) makes mpm2grid checkpoint and stop on SIGTERM; the job requeues
 # itself, the second start goes on with --restart latest, and the outputs (summary.json,
 # series.csv, profiles.csv, the particle files) equal those of an uninterrupted run byte for byte.
+# The job has 2 tasks: the domain is decomposed over 2 ranks, and so is the uninterrupted run.
 #   mpm2grid_requeue.sh SOURCE_DIR BIN_DIR WORK_DIR
 set -euo pipefail
 source "$(dirname "$0")/requeue_helpers.sh"
@@ -15,7 +16,7 @@ scene=("$src/solvers/mpm2grid/scenes/table_3_4_example2.yaml" "grid.spacing=0.5 
        checkpoint.every_steps=500)
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 
-job=$(SUITE_BIN=$bin SUITE_OUT=$work/pieces sbatch --parsable --ntasks 1 --output="$work/job-%j.out" \
+job=$(SUITE_BIN=$bin SUITE_OUT=$work/pieces sbatch --parsable --ntasks 2 --output="$work/job-%j.out" \
       "$src/slurm/mpm2grid.sbatch" "${scene[@]}")
 job=${job%%;*}
 log=$work/job-$job.out
@@ -36,6 +37,6 @@ grep -q "start 2:.*--restart latest" "$log" || { echo "the second start did not 
 grep -q "restarting from checkpoint_" "$work/pieces/log.txt" || { echo "mpm2grid did not restart"; exit 1; }
 grep -q '"status": "completed"' "$work/pieces/run.json" || { echo "the requeued run did not complete"; exit 1; }
 
-"$bin/mpm2grid" "${scene[@]}" --out "$work/straight" --log-level warn
+mpiexec -n 2 --oversubscribe --allow-run-as-root "$bin/mpm2grid" "${scene[@]}" --out "$work/straight" --log-level warn
 "$same_outputs" "$work/straight" "$work/pieces"
 echo "job $job: stopped on the time-limit warning, requeued, restarted, and matched the uninterrupted run"

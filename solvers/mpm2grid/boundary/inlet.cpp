@@ -50,7 +50,7 @@ void Inlet<Dim>::impose(const BlockGrid<Dim>& grid, NodeFields<Dim>& water, doub
 }
 
 template <int Dim>
-void Inlet<Dim>::emit(double t, Particles<Dim>& water) {
+void Inlet<Dim>::emit(double t, Particles<Dim>& water, bool add_particles) {
   const double s = s_.spacing, length = s_.discharge.cumulative(t) / section_height();
   const auto due = static_cast<long long>(std::floor(length / s));
   Vec<Dim> v = Vec<Dim>::Zero();
@@ -60,7 +60,7 @@ void Inlet<Dim>::emit(double t, Particles<Dim>& water) {
     const double x = s_.lo[0] + length - (static_cast<double>(k) + 0.5) * s;
     for (Vec<Dim> p : layer_) {
       p[0] = x;
-      water.add(p, v, mass, volume);
+      if (add_particles) water.add(p, v, mass, volume);
       state_.mass += mass;
     }
   }

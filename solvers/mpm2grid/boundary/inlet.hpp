@@ -63,8 +63,9 @@ class Inlet {
 
   // Sets the velocity of the water grid's nodes with mass on the inlet face to the inflow's at t.
   void impose(const BlockGrid<Dim>& grid, NodeFields<Dim>& water, double t) const;
-  // Adds the layers due by time t (t never decreases from one call to the next).
-  void emit(double t, Particles<Dim>& water);
+  // Adds the layers due by time t (t never decreases from one call to the next). With
+  // add_particles false only the state moves on (the ranks of a decomposition but one).
+  void emit(double t, Particles<Dim>& water, bool add_particles = true);
 
   const InletState& state() const { return state_; }
   void restore(const InletState& state) { state_ = state; }

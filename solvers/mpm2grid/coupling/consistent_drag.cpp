@@ -147,16 +147,36 @@ void add_stencil(const Stencil<Dim>& s, const Index<Dim>& origin, double c, doub
 
 }  // namespace
 
-template <int Dim>
-NodeNumbering NodeNumbering::own_all(const mpi::Comm& comm, const NodeFields<Dim>& soil, const NodeFields<Dim>& water) {
+namespace {
+
+// Numbers the coupled slots for which mine(slot) holds, in slot order after the lower ranks'.
+template <int Dim, class Mine>
+NodeNumbering number_coupled(const mpi::Comm& comm, const NodeFields<Dim>& soil, const NodeFields<Dim>& water,
+                             Mine&& mine) {
   NodeNumbering numbering;
   numbering.global.assign(soil.mass.size(), -1);
   for (std::size_t i = 0; i < soil.mass.size(); ++i)
-    if (drag_coupled(soil.mass[i], water.mass[i])) numbering.global[i] = numbering.owned++;
+    if (mine(i) && drag_coupled(soil.mass[i], water.mass[i])) numbering.global[i] = numbering.owned++;
   numbering.first = static_cast<long>(comm.exclusive_prefix_sum(static_cast<long long>(numbering.owned)));
   for (auto& g : numbering.global)
     if (g >= 0) g += numbering.first;
   return numbering;
+}
+
+}  // namespace
+
+template <int Dim>
+NodeNumbering NodeNumbering::own_all(const mpi::Comm& comm, const NodeFields<Dim>& soil, const NodeFields<Dim>& water) {
+  return number_coupled(comm, soil, water, [](std::size_t) { return true; });
+}
+
+template <int Dim>
+NodeNumbering NodeNumbering::own_blocks(const mpi::Comm& comm, const NodeFields<Dim>& soil,
+                                        const NodeFields<Dim>& water, const std::vector<char>& owned_block) {
+  constexpr std::size_t kNodes = BlockGrid<Dim>::kNodes;
+  if (owned_block.size() * kNodes != soil.mass.size())
+    throw std::invalid_argument("NodeNumbering::own_blocks: one flag per block of the node fields expected");
+  return number_coupled(comm, soil, water, [&](std::size_t i) { return owned_block[i / kNodes] != 0; });
 }
 
 template <int Dim>
@@ -415,5 +435,9 @@ template class ConsistentDrag<2>;
 template class ConsistentDrag<3>;
 template NodeNumbering NodeNumbering::own_all<2>(const mpi::Comm&, const NodeFields<2>&, const NodeFields<2>&);
 template NodeNumbering NodeNumbering::own_all<3>(const mpi::Comm&, const NodeFields<3>&, const NodeFields<3>&);
+template NodeNumbering NodeNumbering::own_blocks<2>(const mpi::Comm&, const NodeFields<2>&, const NodeFields<2>&,
+                                                    const std::vector<char>&);
+template NodeNumbering NodeNumbering::own_blocks<3>(const mpi::Comm&, const NodeFields<3>&, const NodeFields<3>&,
+                                                    const std::vector<char>&);
 
 }  // namespace suite::mpm2grid

@@ -72,6 +72,12 @@ struct NodeNumbering {
   // (MPI_Exscan of the owned counts). COLLECTIVE on comm.
   template <int Dim>
   static NodeNumbering own_all(const mpi::Comm& comm, const NodeFields<Dim>& soil, const NodeFields<Dim>& water);
+  // This rank owns the coupled nodes of the blocks marked in owned_block (one flag per block of
+  // 4^Dim or kNodes slots) and numbers them in slot order after the lower ranks' nodes; the other
+  // slots get -1, to be replaced by their owners' numbers (a halo copy). COLLECTIVE on comm.
+  template <int Dim>
+  static NodeNumbering own_blocks(const mpi::Comm& comm, const NodeFields<Dim>& soil, const NodeFields<Dim>& water,
+                                  const std::vector<char>& owned_block);
 };
 
 // What one solve did, over the Dim components.
@@ -122,5 +128,9 @@ extern template class ConsistentDrag<2>;
 extern template class ConsistentDrag<3>;
 extern template NodeNumbering NodeNumbering::own_all<2>(const mpi::Comm&, const NodeFields<2>&, const NodeFields<2>&);
 extern template NodeNumbering NodeNumbering::own_all<3>(const mpi::Comm&, const NodeFields<3>&, const NodeFields<3>&);
+extern template NodeNumbering NodeNumbering::own_blocks<2>(const mpi::Comm&, const NodeFields<2>&, const NodeFields<2>&,
+                                                           const std::vector<char>&);
+extern template NodeNumbering NodeNumbering::own_blocks<3>(const mpi::Comm&, const NodeFields<3>&, const NodeFields<3>&,
+                                                           const std::vector<char>&);
 
 }  // namespace suite::mpm2grid

@@ -5,6 +5,7 @@
 // (i h, j h[, k h]); block b holds nodes 4 b .. 4 b + 3 per axis. Both species' grids use the
 // same blocks (co-located nodes), each with its own node fields (NodeFields).
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -19,6 +20,8 @@ class BlockGrid {
   static constexpr int kSide = 4;                     // nodes per block side
   static constexpr int kNodes = Dim == 2 ? 16 : 64;   // nodes per block (and per stencil)
   static constexpr int kStencilBlocks = 1 << Dim;     // blocks a stencil can touch
+
+  using Key = std::uint64_t;  // a block's coordinates packed into one integer (key())
 
   explicit BlockGrid(double h) : h_(h) {}
 
@@ -43,12 +46,41 @@ class BlockGrid {
     });
   }
 
+  // Activates one block (if it is not active yet) and returns its index.
+  int activate(const Index<Dim>& b) {
+    const auto [it, fresh] = lookup_.emplace(pack(b), static_cast<int>(coords_.size()));
+    if (fresh) coords_.push_back(b);
+    return it->second;
+  }
+
   // Index of the block holding `node`, or -1 when that block is not active.
   int block_of_node(const Index<Dim>& node) const {
+    const auto it = lookup_.find(pack(block_holding(node)));
+    return it == lookup_.end() ? -1 : it->second;
+  }
+
+  // The coordinates of the block that holds `node` (active or not).
+  static Index<Dim> block_holding(const Index<Dim>& node) {
     Index<Dim> b;
     for (int d = 0; d < Dim; ++d) b[d] = floor_div(node[d]);
-    const auto it = lookup_.find(pack(b));
-    return it == lookup_.end() ? -1 : it->second;
+    return b;
+  }
+  // A particle's home block: the block holding the lower corner floor(x / h) of its cell, a node
+  // of its stencil. The rank owning that block owns the particle (decomposition/).
+  Index<Dim> home_block(const Vec<Dim>& x) const {
+    Index<Dim> node;
+    for (int d = 0; d < Dim; ++d) node[d] = static_cast<int>(std::floor(x[d] / h_));
+    return block_holding(node);
+  }
+  // A block's key, unique per coordinates, and back.
+  static Key key(const Index<Dim>& b) { return pack(b); }
+  static Index<Dim> unkey(Key key) {
+    Index<Dim> b;
+    for (int d = Dim - 1; d >= 0; --d) {
+      b[d] = static_cast<int>(key & 0x1FFFFF) - (1 << 20);
+      key >>= 21;
+    }
+    return b;
   }
 
   // Slot (0 .. nodes() - 1) of an active node, or -1.

@@ -80,6 +80,9 @@ void write_state(checkpoint::Writer& w, const Simulation<Dim>& sim, const RunPro
   std::string limiters;
   for (const auto& [name, n] : progress.limiters) limiters += name + "=" + std::to_string(n) + "\n";
   w.write_bytes("run/limiters", std::as_bytes(std::span(limiters.data(), limiters.size())));
+  // The owner table over several ranks (each rank its blocks; empty on one rank).
+  const auto* dd = sim.decomposition();
+  w.write<long long>("decomposition/owned_blocks", dd ? dd->owned_keys() : std::vector<long long>{});
 }
 
 template <int Dim>
@@ -107,6 +110,8 @@ void read_state(checkpoint::Reader& r, Simulation<Dim>& sim, RunProgress& progre
     const auto eq = line.rfind('=');
     progress.limiters[line.substr(0, eq)] = std::stoll(line.substr(eq + 1));
   }
+  const auto owned_blocks = r.read<long long>("decomposition/owned_blocks");
+  if (auto* dd = sim.decomposition()) dd->restore(owned_blocks);
 }
 
 template void write_state<2>(checkpoint::Writer&, const Simulation<2>&, const RunProgress&);

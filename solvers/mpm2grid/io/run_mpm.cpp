@@ -8,6 +8,7 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/errors.hpp"
 #include "core/checkpoint/checkpoint.hpp"
@@ -56,16 +57,17 @@ std::vector<io::CsvColumn> series_columns() {
 const std::vector<io::CsvColumn> kProfileColumns{{"time", "s"}, {"x", "m"}, {"top_y", "m"}};
 
 // The farthest water particle along x plus half a particle spacing: the surge front of a
-// collapsing column (Martin & Moyce measured the leading edge).
+// collapsing column (Martin & Moyce measured the leading edge). COLLECTIVE.
 template <int Dim>
 double water_front(const Simulation<Dim>& sim, double half_spacing) {
   double front = -std::numeric_limits<double>::infinity();
   for (const auto& x : sim.water().x) front = std::max(front, x[0]);
-  return sim.water().size() ? front + half_spacing : std::nan("");
+  front = sim.max_over_ranks(front);
+  return std::isfinite(front) ? front + half_spacing : std::nan("");
 }
 
 constexpr const char* kSolver = "mpm2grid";
-constexpr long long kCheckpointFormat = 2;  // 2: inlet state, outlet record, initial soil volume
+constexpr long long kCheckpointFormat = 3;  // 2: inlet state, outlet record, initial soil volume; 3: block owners
 
 template <int Dim>
 class MpmRun {
@@ -77,10 +79,6 @@ class MpmRun {
         record_(comm, kSolver, o.argv),
         petsc_(petsc_session(comm, scene_)),
         sim_(scene_.simulation, comm) {
-    if (comm.size() > 1)
-      throw InputError(fmt::format("mpm2grid runs on one rank for now, not {}: the domain decomposition over "
-                                   "ranks (METIS-balanced grid blocks) is not built yet; run without mpiexec",
-                                   comm.size()));
     out_ = io::prepare_output_dir(comm, o.out);
     io::prepare_output_dir(comm, out_ / "particles");
     checkpoints_ = io::prepare_output_dir(comm, out_ / "checkpoints");
@@ -98,7 +96,9 @@ class MpmRun {
     } else {
       // a fresh start: checkpoints of an earlier run are stale
       checkpoint::discard_after(comm_, checkpoints_, "checkpoint", -1, log_);
-      seed_particles(scene_, sim_);
+      // Rank 0 seeds the lattice; over several ranks METIS then spreads the blocks and particles.
+      if (comm_.is_root()) seed_particles(scene_, sim_);
+      sim_.distribute();
       p_.initial_soil_volume = soil_in_dam();
       p_.next_sample = scene_.time.series;
       p_.next_output = scene_.time.output;
@@ -108,7 +108,12 @@ class MpmRun {
       output();
     }
     log_.info("{}D scene {}: h = {} m, {} water and {} soil particles, drag {}", Dim, scene_.name,
-              scene_.simulation.h, sim_.water().size(), sim_.soil().size(), drag_name(scene_.simulation.drag));
+              scene_.simulation.h, count(sim_.water()), count(sim_.soil()), drag_name(scene_.simulation.drag));
+    if (comm_.size() > 1) {
+      const auto per_rank = comm_.all_gather(static_cast<long long>(sim_.water().size() + sim_.soil().size()));
+      log_.info("domain decomposed over {} ranks (METIS on the grid blocks; halo 2 cells): particles per rank {}",
+                comm_.size(), fmt::join(per_rank, ", "));
+    }
     if (sim_.soil().size() > 0) {
       const auto& soil = scene_.simulation.soil.material;
       log_.info("soil: dry cohesion c0 = {:.6g} Pa, friction angle {:.4g} deg", soil.cohesion,
@@ -123,6 +128,7 @@ class MpmRun {
     checkpoint::Schedule schedule(scene_.checkpoints);
     ProgressLine progress(log_, sim_.time(), scene_.time.end);
     const long long first_step = sim_.steps();
+    first_step_ = first_step;
     const double end = scene_.time.end * (1 - 1e-12);
     while (sim_.time() < end) {
       advance();
@@ -163,7 +169,11 @@ class MpmRun {
     const double inlet_velocity = sim_.inlet() ? sim_.inlet()->velocity(sim_.time()) : 0.0;
     const double speed_limit = BlowUpCheck::speed_limit(scene_.simulation, inlet_velocity);
     for (const auto* P : {&sim_.water(), &sim_.soil()}) {
-      const auto scan = ParticleScan<Dim>::of(*P);
+      // The worst particle of any rank: every rank stops with the same message.
+      const auto local = ParticleScan<Dim>::of(*P);
+      ParticleScan<Dim> scan;
+      scan.finite = !comm_.any(!local.finite);
+      scan.speed = comm_.max(local.finite ? local.speed : 0.0);
       const char* species = P == &sim_.water() ? "water" : "soil";
       const auto where = fmt::format("the run blew up at step {} (t = {:.6g} s, dt = {:.4g} s limited by {})",
                                      sim_.steps(), sim_.time(), dt, limit.limiter);
@@ -211,19 +221,52 @@ class MpmRun {
     const auto& s = scene_.simulation;
     const auto& out = sim_.outflow();
     const Discharges q = p_.outlet.sample(sim_.time(), out.water_mass, out.soil_mass, s.water.density, s.soil.density);
-    if (!csv_) return;
-    csv_->append({sim_.time(), dt, water_front(sim_, half_spacing_), sim_.water().total_mass(),
-                  sim_.soil().total_mass(), out.water_mass, out.soil_mass, sim_.inflow_mass(), q.water, q.soil,
-                  eroded_volume(), crest_height(profile(), floor()), sim_.kinetic_energy(),
-                  static_cast<double>(sim_.water().size()), static_cast<double>(sim_.soil().size())});
+    // Every rank takes part in the sums; rank 0 writes them.
+    const std::vector<double> row{sim_.time(),
+                                  dt,
+                                  water_front(sim_, half_spacing_),
+                                  mass(sim_.water()),
+                                  mass(sim_.soil()),
+                                  out.water_mass,
+                                  out.soil_mass,
+                                  sim_.inflow_mass(),
+                                  q.water,
+                                  q.soil,
+                                  eroded_volume(),
+                                  crest_height(profile(), floor()),
+                                  sim_.kinetic_energy(),
+                                  static_cast<double>(count(sim_.water())),
+                                  static_cast<double>(count(sim_.soil()))};
+    if (csv_) csv_->append(row);
   }
 
+  // Over all ranks. COLLECTIVE.
+  double mass(const Particles<Dim>& P) const { return sim_.sum_over_ranks(P.total_mass()); }
+  long long count(const Particles<Dim>& P) const { return comm_.sum(static_cast<long long>(P.size())); }
+
   double floor() const { return scene_.simulation.walls.lo[1]; }
+  // The crest profile of every rank's soil: each column's top is the highest over the ranks.
+  // COLLECTIVE.
   std::vector<ColumnTop> profile() const {
-    return crest_profile(sim_.soil(), scene_.simulation.walls.lo[0], scene_.simulation.h, half_spacing_);
+    const double x0 = scene_.simulation.walls.lo[0], h = scene_.simulation.h;
+    auto local = crest_profile(sim_.soil(), x0, h, half_spacing_);
+    if (comm_.size() == 1) return local;
+    const auto columns = static_cast<std::size_t>(std::llround((scene_.simulation.walls.hi[0] - x0) / h)) + 1;
+    std::vector<double> top(columns, -std::numeric_limits<double>::infinity());
+    for (const auto& c : local) {
+      const auto i = static_cast<long long>(std::floor((c.x - x0) / h));
+      if (i >= 0 && i < static_cast<long long>(columns)) top[static_cast<std::size_t>(i)] = c.top;
+    }
+    comm_.all_reduce(top, mpi::Comm::Reduction::max);
+    std::vector<ColumnTop> merged;
+    for (std::size_t i = 0; i < columns; ++i)
+      if (std::isfinite(top[i])) merged.push_back({x0 + (static_cast<double>(i) + 0.5) * h, top[i]});
+    return merged;
   }
-  // Soil still in the dam's initial cross-section grown by half a particle spacing.
-  double soil_in_dam() const { return volume_within(sim_.soil(), scene_.soil_regions, half_spacing_); }
+  // Soil still in the dam's initial cross-section grown by half a particle spacing. COLLECTIVE.
+  double soil_in_dam() const {
+    return sim_.sum_over_ranks(volume_within(sim_.soil(), scene_.soil_regions, half_spacing_));
+  }
   double eroded_volume() const { return p_.initial_soil_volume - soil_in_dam(); }
 
   void output() {
@@ -231,8 +274,10 @@ class MpmRun {
     write_particles(comm_, sim_, out_, fmt::format("particles/step_{:06d}.h5", sim_.steps()),
                     xdmf_ ? &*xdmf_ : nullptr);
     ++p_.files;
-    if (profiles_ && sim_.soil().size() > 0)
-      for (const auto& c : profile()) profiles_->append({sim_.time(), c.x, c.top});
+    if (count(sim_.soil()) == 0) return;
+    const auto columns = profile();
+    if (profiles_)
+      for (const auto& c : columns) profiles_->append({sim_.time(), c.x, c.top});
   }
 
   void write_checkpoint() {
@@ -269,8 +314,8 @@ class MpmRun {
     summary.set("steps", static_cast<double>(sim_.steps()));
     summary.set("smallest_dt", p_.smallest_dt, "s");
     summary.set("water_front", water_front(sim_, half_spacing_), "m");
-    summary.set("water_mass", sim_.water().total_mass(), "kg");
-    summary.set("soil_mass", sim_.soil().total_mass(), "kg");
+    summary.set("water_mass", mass(sim_.water()), "kg");
+    summary.set("soil_mass", mass(sim_.soil()), "kg");
     summary.set("outflow_water_mass", sim_.outflow().water_mass, "kg");
     summary.set("outflow_soil_mass", sim_.outflow().soil_mass, "kg");
     const auto& s = scene_.simulation;
@@ -291,9 +336,27 @@ class MpmRun {
       limits += fmt::format("{}{}: {} steps", limits.empty() ? "" : ", ", why, n);
     record_.extra()["dt_limiters"] = p_.limiters;
     if (scene_.simulation.drag == DragScheme::consistent) record_.extra()["drag_ksp_max_iterations"] = drag_iterations_;
+    if (const auto* dd = sim_.decomposition()) record_decomposition(*dd, sim_.steps() - first_step_);
     record_.write(out_ / "run.json", timers_, "completed");
     log_.info("done: {} steps to t = {} s (dt limited by {}); {} particle files", sim_.steps(), sim_.time(), limits,
               p_.files);
+  }
+
+  // The decomposition's traffic in run.json: sums over the ranks per step of this run (or of its
+  // part since the restart), the load at the end. COLLECTIVE.
+  void record_decomposition(const DomainDecomposition<Dim>& dd, long long steps) {
+    const auto& st = dd.stats();
+    const double per_step = 1.0 / static_cast<double>(std::max(1LL, steps));
+    auto& j = record_.extra()["decomposition"];
+    j["ranks"] = comm_.size();
+    j["steps"] = steps;
+    j["rebalances"] = st.rebalances;
+    j["imbalance_at_last_check"] = st.imbalance;
+    j["halo_bytes_per_step"] = static_cast<double>(comm_.sum(st.halo_bytes)) * per_step;
+    j["migrated_particles_per_step"] = static_cast<double>(comm_.sum(st.migrated)) * per_step;
+    j["migration_bytes_per_step"] = static_cast<double>(comm_.sum(st.migration_bytes)) * per_step;
+    j["claimed_blocks"] = st.claimed_blocks;
+    j["particles_per_rank"] = comm_.all_gather(static_cast<long long>(sim_.water().size() + sim_.soil().size()));
   }
 
   // A PETSc session for the consistent drag only.
@@ -323,7 +386,8 @@ class MpmRun {
   Simulation<Dim> sim_;
   std::filesystem::path out_, checkpoints_;
   double half_spacing_ = 0, last_dt_ = 0;
-  long long drag_iterations_ = 0;  // most KSP iterations of one consistent drag solve in this run
+  long long drag_iterations_ = 0;
+  long long first_step_ = 0;  // the step this run (or its restart) began at  // most KSP iterations of one consistent drag solve in this run
   RunProgress p_;
   std::optional<io::CsvSeries> csv_;    // rank 0 only
   std::optional<io::CsvSeries> profiles_;  // rank 0 only

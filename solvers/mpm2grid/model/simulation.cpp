@@ -1,6 +1,7 @@
 #include "solvers/mpm2grid/model/simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -14,6 +15,7 @@ template <int Dim>
 Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm)
     : s_(settings), grid_(settings.h), comm_(std::move(comm)) {
   if (s_.inlet) inlet_.emplace(*s_.inlet);
+  if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, s_.h);
   if (s_.drag != DragScheme::consistent) return;
   if (!comm_) throw std::invalid_argument("the consistent drag solve needs a communicator");
   consistent_ = std::make_unique<ConsistentDrag<Dim>>(*comm_, "drag_");
@@ -24,14 +26,17 @@ StepLimit Simulation<Dim>::stable_dt() const {
   double vmax = 0;
   for (const auto* P : {&water_, &soil_})
     for (const auto& v : P->v) vmax = std::max(vmax, v.norm());
+  vmax = max_over_ranks(vmax);
+  const bool water = sum_over_ranks(static_cast<double>(water_.size())) > 0;
+  const bool soil = sum_over_ranks(static_cast<double>(soil_.size())) > 0;
   const double h = s_.h;
   StepLimit best{s_.dt_max, "dt_max"};
   auto consider = [&](double dt, const char* why) {
     if (dt < best.dt) best = {dt, why};
   };
   if (vmax > 0) consider(s_.cfl * h / vmax, "cfl (velocity)");
-  if (water_.size() > 0) consider(s_.cfl * h / s_.water.eos.sound_speed(s_.water.density), "water wave speed");
-  if (soil_.size() > 0) consider(s_.cfl * h / s_.soil.material.p_wave_speed(s_.soil.density), "soil elastic wave speed");
+  if (water) consider(s_.cfl * h / s_.water.eos.sound_speed(s_.water.density), "water wave speed");
+  if (soil) consider(s_.cfl * h / s_.soil.material.p_wave_speed(s_.soil.density), "soil elastic wave speed");
   return best;
 }
 
@@ -40,6 +45,7 @@ void Simulation<Dim>::build_grid() {
   grid_.clear();
   touch_blocks(water_, grid_);
   touch_blocks(soil_, grid_);
+  if (dd_) dd_->prepare(grid_);
   water_nodes_.reset(grid_.nodes());
   soil_nodes_.reset(grid_.nodes());
 }
@@ -60,30 +66,55 @@ void Simulation<Dim>::stresses() {
 
 template <int Dim>
 void Simulation<Dim>::step(double dt) {
+  if (dd_) dd_->balance(steps_, water_, soil_);
   build_grid();
   stresses();
   particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_);
   particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_);
+  if (dd_) dd_->sum_to_owners(soil_nodes_, water_nodes_);
   for (std::size_t i = 0; i < grid_.nodes(); ++i) {
     water_nodes_.force[i] += water_nodes_.mass[i] * s_.gravity;
     soil_nodes_.force[i] += soil_nodes_.mass[i] * s_.gravity;
   }
-  if (consistent_) {
-    const auto numbering = NodeNumbering::own_all(*comm_, soil_nodes_, water_nodes_);
-    drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering);
-  } else {
-    solve_grid_velocities(soil_nodes_, water_nodes_, dt, s_.drag);
-  }
+  solve_grid(dt);
   s_.walls.apply(grid_, water_nodes_);
   s_.walls.apply(grid_, soil_nodes_);
   const double t_next = time_ + dt;
   if (inlet_) inlet_->impose(grid_, water_nodes_, t_next);
+  if (dd_) dd_->copy_to_ghosts(soil_nodes_, water_nodes_);
   update_particles(dt);
   update_saturation();
   remove_outflow();
-  if (inlet_) inlet_->emit(t_next, water_);
+  // The inlet's state is the same on every rank; rank 0 adds its particles, migrate() sends them
+  // to their owners.
+  if (inlet_) inlet_->emit(t_next, water_, !dd_ || dd_->comm().is_root());
+  if (dd_) dd_->migrate(water_, soil_);
   time_ = t_next;
   ++steps_;
+}
+
+// The drag-coupled grid velocities on this rank's nodes (on ghost nodes too, from partial sums:
+// copy_to_ghosts() replaces them with the owners').
+template <int Dim>
+void Simulation<Dim>::solve_grid(double dt) {
+  if (!consistent_) {
+    solve_grid_velocities(soil_nodes_, water_nodes_, dt, s_.drag);
+    return;
+  }
+  if (!dd_) {
+    const auto numbering = NodeNumbering::own_all(*comm_, soil_nodes_, water_nodes_);
+    drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering);
+    return;
+  }
+  // Owners number their coupled nodes; the ghost copies learn the owners' numbers.
+  auto numbering = NodeNumbering::own_blocks(*comm_, soil_nodes_, water_nodes_, dd_->owned_blocks());
+  dd_->copy_to_ghosts(numbering.global);
+  drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering);
+}
+
+template <int Dim>
+void Simulation<Dim>::distribute() {
+  if (dd_) dd_->balance(steps_, water_, soil_, true);
 }
 
 template <int Dim>
@@ -127,16 +158,28 @@ void Simulation<Dim>::update_saturation() {
 
 template <int Dim>
 void Simulation<Dim>::remove_outflow() {
+  Outflow<Dim> step;  // this step's, on this rank
   auto book = [&](Particles<Dim>& P, double& mass) {
     P.retain([&](std::size_t p) {
       if (!s_.walls.left_through_open_side(P.x[p])) return true;
       mass += P.mass[p];
-      outflow_.momentum += P.mass[p] * P.v[p];
+      step.momentum += P.mass[p] * P.v[p];
       return false;
     });
   };
-  book(water_, outflow_.water_mass);
-  book(soil_, outflow_.soil_mass);
+  book(water_, step.water_mass);
+  book(soil_, step.soil_mass);
+  if (dd_) {  // the record is the same on every rank
+    std::array<double, 2 + Dim> all{};
+    all[0] = step.water_mass, all[1] = step.soil_mass;
+    for (int d = 0; d < Dim; ++d) all[2 + d] = step.momentum[d];
+    dd_->comm().all_reduce(all, mpi::Comm::Reduction::sum);
+    step.water_mass = all[0], step.soil_mass = all[1];
+    for (int d = 0; d < Dim; ++d) step.momentum[d] = all[2 + d];
+  }
+  outflow_.water_mass += step.water_mass;
+  outflow_.soil_mass += step.soil_mass;
+  outflow_.momentum += step.momentum;
 }
 
 template <int Dim>
@@ -144,7 +187,7 @@ double Simulation<Dim>::kinetic_energy() const {
   double e = 0;
   for (const auto* P : {&water_, &soil_})
     for (std::size_t p = 0; p < P->size(); ++p) e += 0.5 * P->mass[p] * P->v[p].squaredNorm();
-  return e;
+  return sum_over_ranks(e);
 }
 
 template class Simulation<2>;

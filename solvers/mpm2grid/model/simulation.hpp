@@ -13,6 +13,10 @@
 // Saturation: the water grid's volume fraction phi_i = m_w,i / (rho_w h^Dim), and a soil
 // particle's S = clamp(sum_i w_ip phi_i / n, 0, 1), n the soil's porosity: pores full of water
 // give S = 1.
+// Over several ranks (a communicator of more than one rank), each rank steps the particles of
+// the grid blocks it owns, with one reverse halo sum after P2G, one forward halo copy after the
+// grid solve and the particles' migration to their new owners (decomposition/); the sums over
+// particles (masses, energies, the outflow) are then over all ranks.
 // Buoyancy is not modelled yet: both species feel gravity with their own masses, and the only
 // exchange between them is the drag.
 #include <memory>
@@ -24,6 +28,7 @@
 #include "solvers/mpm2grid/boundary/walls.hpp"
 #include "solvers/mpm2grid/coupling/consistent_drag.hpp"
 #include "solvers/mpm2grid/coupling/drag_solve.hpp"
+#include "solvers/mpm2grid/decomposition/domain_decomposition.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/materials/hencky_drucker_prager.hpp"
 #include "solvers/mpm2grid/materials/weakly_compressible_water.hpp"
@@ -62,6 +67,7 @@ struct SimulationSettings {
   double cfl = 0.4;        // fraction of a cell a particle or a wave may cross per step
   double dt_max = 1e-3;    // s
   std::optional<InletSettings<Dim>> inlet;  // water inlet on the x_low side, if any
+  DecompositionSettings decomposition;      // load checks and rebalancing over several ranks
 };
 
 // What limits the time step, for the log.
@@ -81,7 +87,10 @@ template <int Dim>
 class Simulation {
  public:
   // `comm` is needed for the consistent drag (a PETSc solve on it, inside a PetscSession, with the
-  // options prefix "drag_"); the other schemes need none.
+  // options prefix "drag_"); the other schemes need none. A comm of more than one rank
+  // decomposes the domain: every member below that says COLLECTIVE must then be called on every
+  // rank, the particles are seeded on any ranks (distribute() spreads them) and water() and
+  // soil() hold this rank's.
   explicit Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm = std::nullopt);
 
   Particles<Dim>& water() { return water_; }
@@ -102,11 +111,21 @@ class Simulation {
   long long steps() const { return steps_; }
 
   // The largest stable dt now: cfl h / max |v_p|, cfl h / c for the water's and the soil's wave
-  // speeds, and dt_max. Drag never limits it (implicit).
+  // speeds, and dt_max. Drag never limits it (implicit). COLLECTIVE.
   StepLimit stable_dt() const;
 
-  // Advances by dt.
+  // Advances by dt. COLLECTIVE.
   void step(double dt);
+
+  // Over several ranks: partitions the blocks of the particles seeded so far with METIS and sends
+  // each particle to its owner. Nothing on one rank. COLLECTIVE.
+  void distribute();
+  // The decomposition, or nullptr on one rank.
+  const DomainDecomposition<Dim>* decomposition() const { return dd_ ? &*dd_ : nullptr; }
+  DomainDecomposition<Dim>* decomposition() { return dd_ ? &*dd_ : nullptr; }
+  // The sum of a value over the ranks (the value itself on one rank). COLLECTIVE.
+  double sum_over_ranks(double v) const { return dd_ ? dd_->comm().sum(v) : v; }
+  double max_over_ranks(double v) const { return dd_ ? dd_->comm().max(v) : v; }
 
   // Sets the clock, step count and outflow record of a run read back from a checkpoint (the
   // particles are set through water() and soil()).
@@ -117,7 +136,7 @@ class Simulation {
     if (inlet_) inlet_->restore(inlet);
   }
 
-  // Kinetic energy of both species, J (J/m in 2D).
+  // Kinetic energy of both species, J (J/m in 2D). COLLECTIVE.
   double kinetic_energy() const;
 
  private:
@@ -126,6 +145,7 @@ class Simulation {
   void update_particles(double dt);
   void update_saturation();
   void remove_outflow();
+  void solve_grid(double dt);
 
   SimulationSettings<Dim> s_;
   Particles<Dim> water_, soil_;
@@ -138,6 +158,7 @@ class Simulation {
   SolveStats drag_stats_{};
   Outflow<Dim> outflow_;
   std::optional<Inlet<Dim>> inlet_;
+  std::optional<DomainDecomposition<Dim>> dd_;
   double time_ = 0;
   long long steps_ = 0;
 };

@@ -1,6 +1,7 @@
 #pragma once
 // One species' material points as a structure of arrays (spec/mpm2grid.md). Units: metres,
 // seconds, kilograms; in 2D masses and volumes are per metre of thickness (kg/m, m^2).
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -48,6 +49,32 @@ struct Particles {
     }
     x.resize(n), v.resize(n), C.resize(n), mass.resize(n), volume0.resize(n);
     F.resize(n), J.resize(n), log_jp.resize(n), saturation.resize(n);
+  }
+
+  // A particle's whole state as kPacked doubles (for moving it to another rank), and back.
+  static constexpr int kPacked = 2 * Dim + 2 * Dim * Dim + 5;
+  void pack(std::size_t p, std::vector<double>& out) const {
+    const auto put = [&](const double* a, int n) { out.insert(out.end(), a, a + n); };
+    put(x[p].data(), Dim), put(v[p].data(), Dim), put(C[p].data(), Dim * Dim);
+    out.insert(out.end(), {mass[p], volume0[p]});
+    put(F[p].data(), Dim * Dim);
+    out.insert(out.end(), {J[p], log_jp[p], saturation[p]});
+  }
+  // Appends the particle packed at `in` (kPacked doubles).
+  void add_packed(const double* in) {
+    const auto take = [&](auto& m, int n) {
+      std::copy(in, in + n, m.data());
+      in += n;
+    };
+    Vec<Dim> xp, vp;
+    Mat<Dim> Cp, Fp;
+    take(xp, Dim), take(vp, Dim), take(Cp, Dim * Dim);
+    x.push_back(xp), v.push_back(vp), C.push_back(Cp);
+    mass.push_back(in[0]), volume0.push_back(in[1]);
+    in += 2;
+    take(Fp, Dim * Dim);
+    F.push_back(Fp);
+    J.push_back(in[0]), log_jp.push_back(in[1]), saturation.push_back(in[2]);
   }
 
   double total_mass() const {

@@ -183,6 +183,10 @@ Scene<Dim> read_scene(const config::Config& cfg) {
   sc.time.series = time.quantity("series", "s", sc.time.end / 100, Range::positive());
   sc.time.output = time.quantity("output", "s", sc.time.end / 10, Range::positive());
   sc.time.max_steps = time.integer("max_steps", 0, 0, std::numeric_limits<long long>::max());
+  // Over several ranks: how often the load is measured, and the imbalance that repartitions.
+  const auto dd = root.section_or_empty("decomposition");
+  sim.decomposition.check_every = static_cast<int>(dd.integer("check_every", 20, 0, 1000000));
+  sim.decomposition.imbalance = dd.number("imbalance", 1.1, Range::at_least(1));
   sc.checkpoints = checkpoint::ScheduleSettings::read(root.section_or_empty("checkpoint"), {1000, 1800.0, 2});
   cfg.finish();
   return sc;
@@ -194,7 +198,8 @@ std::vector<double> Scene<Dim>::fingerprint() const {
   std::vector<double> f{double(Dim), s.h, double(particles_per_cell), s.gravity[1], s.cfl, s.dt_max,
                         time.end, time.series, time.output, s.water.density, s.water.eos.bulk_modulus,
                         s.water.eos.gamma, s.soil.density, s.soil.porosity, s.soil.conductivity,
-                        double(static_cast<int>(s.drag))};
+                        double(static_cast<int>(s.drag)), double(s.decomposition.check_every),
+                        s.decomposition.imbalance};
   for (int d = 0; d < Dim; ++d) f.insert(f.end(), {s.walls.lo[d], s.walls.hi[d]});
   if (s.inlet) f.insert(f.end(), {s.inlet->height, s.inlet->discharge(0), s.inlet->discharge.cumulative(time.end)});
   return f;

@@ -20,6 +20,8 @@
 //   petsc_options: "-drag_ksp_rtol 1e-10 -drag_pc_type pbjacobi"   # the consistent solve's KSP
 //   time: {end: 0.2 s, cfl: 0.4, dt_max: 1 ms, series: 2 ms, output: 20 ms, max_steps: 0}
 //   checkpoint: {every_steps: 1000, every: 30 min, keep: 2}      # and on SIGUSR1 / SIGTERM
+//   decomposition: {check_every: 20, imbalance: 1.1}   # over several ranks: load checks (steps),
+//                                                      # repartition above this max/mean ratio
 //
 // Soil cohesion: `cohesion` (Pa, c0 of dry soil), or `cohesion_shift` (the dissertation's
 // dimensionless strain-space c_C, mapped to c0 = K tan(phi_f) c_C / alpha, see

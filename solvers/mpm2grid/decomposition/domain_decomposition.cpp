@@ -1,0 +1,208 @@
+#include "solvers/mpm2grid/decomposition/domain_decomposition.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+#include <unordered_map>
+
+#include "core/errors.hpp"
+#include "solvers/mpm2grid/decomposition/exchange.hpp"
+#include "solvers/mpm2grid/decomposition/partition.hpp"
+#include "solvers/mpm2grid/transfer/apic.hpp"
+
+namespace suite::mpm2grid {
+
+template <int Dim>
+Index<Dim> DomainDecomposition<Dim>::home(const Vec<Dim>& x) const {
+  Index<Dim> node;
+  for (int d = 0; d < Dim; ++d) node[d] = static_cast<int>(std::floor(x[d] / h_));
+  return BlockGrid<Dim>::block_holding(node);
+}
+
+template <int Dim>
+void DomainDecomposition<Dim>::prepare(BlockGrid<Dim>& grid) {
+  std::vector<BlockOwners::Key> unowned;
+  for (std::size_t b = 0; b < grid.blocks(); ++b) {
+    const auto key = BlockGrid<Dim>::key(grid.block_coord(b));
+    if (owners_.owner(key) < 0) unowned.push_back(key);
+  }
+  stats_.claimed_blocks += owners_.claim(comm_, unowned);
+  halo_.plan(comm_, grid, owners_);
+}
+
+template <int Dim>
+void DomainDecomposition<Dim>::sum_to_owners(NodeFields<Dim>& soil, NodeFields<Dim>& water) {
+  constexpr int per = 2 + 2 * Dim;  // mass, momentum, force, drag
+  halo_.reverse(
+      comm_, 2 * per,
+      [&](long i, double* out) {
+        for (const auto* f : {&soil, &water}) {
+          out[0] = f->mass[i], out[1] = f->drag[i];
+          for (int d = 0; d < Dim; ++d) out[2 + d] = f->momentum[i][d], out[2 + Dim + d] = f->force[i][d];
+          out += per;
+        }
+      },
+      [&](long i, const double* in) {
+        for (auto* f : {&soil, &water}) {
+          f->mass[i] += in[0], f->drag[i] += in[1];
+          for (int d = 0; d < Dim; ++d) f->momentum[i][d] += in[2 + d], f->force[i][d] += in[2 + Dim + d];
+          in += per;
+        }
+      });
+  stats_.halo_bytes += halo_.take_bytes();
+}
+
+template <int Dim>
+void DomainDecomposition<Dim>::copy_to_ghosts(NodeFields<Dim>& soil, NodeFields<Dim>& water) {
+  halo_.forward(
+      comm_, 2 * Dim + 1,
+      [&](long i, double* out) {
+        for (int d = 0; d < Dim; ++d) out[d] = soil.velocity[i][d], out[Dim + d] = water.velocity[i][d];
+        out[2 * Dim] = water.mass[i];
+      },
+      [&](long i, const double* in) {
+        for (int d = 0; d < Dim; ++d) soil.velocity[i][d] = in[d], water.velocity[i][d] = in[Dim + d];
+        water.mass[i] = in[2 * Dim];
+      });
+  stats_.halo_bytes += halo_.take_bytes();
+}
+
+template <int Dim>
+void DomainDecomposition<Dim>::copy_to_ghosts(std::vector<long>& per_slot) {
+  // Node numbers below 2^53 travel exactly as doubles.
+  halo_.forward(
+      comm_, 1, [&](long i, double* out) { out[0] = static_cast<double>(per_slot[static_cast<std::size_t>(i)]); },
+      [&](long i, const double* in) { per_slot[static_cast<std::size_t>(i)] = static_cast<long>(in[0]); });
+  stats_.halo_bytes += halo_.take_bytes();
+}
+
+template <int Dim>
+void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& soil) {
+  using Key = BlockOwners::Key;
+  std::vector<Key> unowned;
+  for (const auto* P : {&water, &soil})
+    for (const auto& x : P->x) {
+      const Key key = BlockGrid<Dim>::key(home(x));
+      if (owners_.owner(key) < 0) unowned.push_back(key);
+    }
+  std::sort(unowned.begin(), unowned.end());
+  unowned.erase(std::unique(unowned.begin(), unowned.end()), unowned.end());
+  stats_.claimed_blocks += owners_.claim(comm_, unowned);
+
+  const auto ranks = static_cast<std::size_t>(comm_.size());
+  for (auto* P : {&water, &soil}) {
+    std::vector<std::vector<double>> send(ranks);
+    std::vector<int> destination(P->size());
+    for (std::size_t p = 0; p < P->size(); ++p) {
+      destination[p] = owners_.owner(BlockGrid<Dim>::key(home(P->x[p])));
+      if (destination[p] == comm_.rank()) continue;
+      P->pack(p, send[static_cast<std::size_t>(destination[p])]);
+      ++stats_.migrated;
+    }
+    for (const auto& s : send) stats_.migration_bytes += static_cast<long long>(s.size() * sizeof(double));
+    P->retain([&](std::size_t p) { return destination[p] == comm_.rank(); });
+    const auto received = all_to_all(comm_, send);
+    for (const auto& from : received) {
+      if (from.size() % Particles<Dim>::kPacked != 0)
+        throw LibraryError("particle migration: a rank sent a partial particle");
+      for (std::size_t k = 0; k < from.size(); k += Particles<Dim>::kPacked) P->add_packed(from.data() + k);
+    }
+  }
+}
+
+template <int Dim>
+bool DomainDecomposition<Dim>::balance(long long step, Particles<Dim>& water, Particles<Dim>& soil, bool force) {
+  if (!force) {
+    if (s_.check_every <= 0 || step % s_.check_every != 0) return false;
+    const auto soil_counts = comm_.all_gather(static_cast<long long>(soil.size()));
+    const auto water_counts = comm_.all_gather(static_cast<long long>(water.size()));
+    double worst = 1;
+    for (const auto* counts : {&soil_counts, &water_counts}) {
+      long long total = 0, most = 0;
+      for (const long long c : *counts) total += c, most = std::max(most, c);
+      // A species too small to spread (fewer than 64 particles a rank) is no measure of the load.
+      if (total < 64LL * comm_.size()) continue;
+      worst = std::max(worst, static_cast<double>(most) * comm_.size() / static_cast<double>(total));
+    }
+    stats_.imbalance = worst;
+    if (worst <= s_.imbalance) return false;
+    ++stats_.rebalances;
+  }
+  partition(water, soil);
+  migrate(water, soil);
+  return true;
+}
+
+template <int Dim>
+void DomainDecomposition<Dim>::partition(const Particles<Dim>& water, const Particles<Dim>& soil) {
+  // This rank's blocks in use (its particles' stencils) with the particles whose home they are.
+  struct Entry {
+    BlockOwners::Key key;
+    long long soil, water;
+  };
+  BlockGrid<Dim> touched(h_);
+  touch_blocks(water, touched);
+  touch_blocks(soil, touched);
+  std::unordered_map<BlockOwners::Key, std::array<long long, 2>> homes;
+  for (const auto& x : soil.x) ++homes[BlockGrid<Dim>::key(home(x))][0];
+  for (const auto& x : water.x) ++homes[BlockGrid<Dim>::key(home(x))][1];
+  std::vector<Entry> mine;
+  mine.reserve(touched.blocks());
+  for (std::size_t b = 0; b < touched.blocks(); ++b) {
+    const auto key = BlockGrid<Dim>::key(touched.block_coord(b));
+    const auto it = homes.find(key);
+    mine.push_back(it == homes.end() ? Entry{key, 0, 0} : Entry{key, it->second[0], it->second[1]});
+  }
+  // Every rank's, merged by block in key order (a block at a border is in use on several ranks).
+  std::map<BlockOwners::Key, std::array<long long, 2>> blocks;
+  for (const auto& from : all_gather(comm_, mine))
+    for (const auto& e : from) {
+      auto& w = blocks[e.key];
+      w[0] += e.soil, w[1] += e.water;
+    }
+  std::vector<BlockOwners::Key> keys;
+  std::vector<Index<Dim>> coords;
+  std::vector<std::array<long long, 2>> weights;
+  std::vector<int> previous;
+  std::vector<long long> work;
+  for (const auto& [key, w] : blocks) {
+    keys.push_back(key);
+    coords.push_back(BlockGrid<Dim>::unkey(key));
+    weights.push_back(w);
+    previous.push_back(owners_.owner(key));
+    work.push_back(w[0] + w[1]);
+  }
+  // METIS runs on rank 0 and its answer is broadcast: every rank gets the same table.
+  // A failure there stops every rank (none is left waiting in the broadcast).
+  std::vector<int> ranks(keys.size(), 0);
+  std::string problem;
+  if (comm_.is_root()) try {
+      ranks = keep_ranks(partition_blocks<Dim>(coords, weights, comm_.size()), previous, work, comm_.size());
+    } catch (const std::exception& e) {
+      problem = e.what();
+      if (problem.empty()) problem = "the partition failed";
+    }
+  comm_.broadcast(problem);
+  if (!problem.empty()) throw LibraryError("partitioning the grid blocks: " + problem);
+  if (!ranks.empty())
+    SUITE_MPI_CHECK(MPI_Bcast(ranks.data(), static_cast<int>(ranks.size()), MPI_INT, 0, comm_.raw()));
+  owners_.assign(keys, ranks);
+}
+
+template <int Dim>
+std::vector<long long> DomainDecomposition<Dim>::owned_keys() const {
+  const auto keys = owners_.owned_by(comm_.rank());
+  return {keys.begin(), keys.end()};
+}
+
+template <int Dim>
+void DomainDecomposition<Dim>::restore(const std::vector<long long>& mine) {
+  owners_.restore(comm_, std::vector<BlockOwners::Key>(mine.begin(), mine.end()));
+}
+
+template class DomainDecomposition<2>;
+template class DomainDecomposition<3>;
+
+}  // namespace suite::mpm2grid

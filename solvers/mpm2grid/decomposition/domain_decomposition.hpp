@@ -1,0 +1,94 @@
+#pragma once
+// The domain decomposition of an mpm2grid run over the ranks of a communicator
+// (spec/mpm2grid.md, "Decomposition and performance design"; issue 3, item 5). Ranks own grid
+// blocks (block_owners.hpp); a particle belongs to the rank owning its home block (the block
+// holding the lower corner of its cell). Per step:
+//   prepare()         the grid of this rank's particles' stencils: blocks no rank owns yet are
+//                     claimed, the halo is planned (halo_exchange.hpp);
+//   sum_to_owners()   after P2G: one reverse halo sum of both species' mass, momentum, force and
+//                     drag coefficients;
+//   copy_to_ghosts()  after the grid solve and the boundary conditions: one forward copy of both
+//                     species' velocities and the water's mass (the soil's saturation reads it);
+//   migrate()         after the particles moved: each goes to the rank owning its new home block.
+// balance() measures the load every `check_every` steps: the particle counts of each species per
+// rank (deterministic, unlike timings, so a restart repeats the same decisions bit for bit).
+// When the most loaded rank holds more than `imbalance` times the mean of a species, the blocks
+// in use are partitioned again with METIS (partition.hpp), keeping each part on the rank that
+// held most of its work, and the particles move to their new owners.
+// No rank holds the whole grid or solution: only its blocks, its ghosts and the owner table
+// (one integer per block).
+#include <vector>
+
+#include "core/mpi/comm.hpp"
+#include "solvers/mpm2grid/decomposition/block_owners.hpp"
+#include "solvers/mpm2grid/decomposition/halo_exchange.hpp"
+#include "solvers/mpm2grid/grid/block_grid.hpp"
+#include "solvers/mpm2grid/particles/particles.hpp"
+
+namespace suite::mpm2grid {
+
+struct DecompositionSettings {
+  int check_every = 20;     // steps between load measurements
+  double imbalance = 1.1;   // rebalance above this ratio of the largest to the mean particle count
+};
+
+// What this rank did, summed since the run (or its restart) began.
+struct DecompositionStats {
+  long long rebalances = 0;       // partitions after the first
+  long long halo_bytes = 0;       // sent in reverse sums and forward copies
+  long long migration_bytes = 0;  // sent with migrating particles
+  long long migrated = 0;         // particles sent to other ranks
+  long long claimed_blocks = 0;   // blocks first reached between partitions (counted on every rank)
+  double imbalance = 1;           // at the last measurement
+};
+
+template <int Dim>
+class DomainDecomposition {
+ public:
+  DomainDecomposition(const mpi::Comm& comm, const DecompositionSettings& settings, double h)
+      : comm_(comm), s_(settings), h_(h) {}
+
+  const mpi::Comm& comm() const { return comm_; }
+  const DecompositionStats& stats() const { return stats_; }
+
+  // COLLECTIVE. `grid` holds the blocks this rank's particles touch; blocks are claimed and
+  // added (owned ones that other ranks' particles touch) as the halo needs.
+  void prepare(BlockGrid<Dim>& grid);
+  // Per block of the prepared grid: 1 where this rank owns it.
+  const std::vector<char>& owned_blocks() const { return halo_.owned(); }
+
+  // COLLECTIVE. Owners get the complete sums of mass, momentum, force (before gravity) and drag.
+  void sum_to_owners(NodeFields<Dim>& soil, NodeFields<Dim>& water);
+  // COLLECTIVE. Ghost nodes get their owners' velocities (both species) and water mass.
+  void copy_to_ghosts(NodeFields<Dim>& soil, NodeFields<Dim>& water);
+  // COLLECTIVE. Ghost nodes get their owners' values of a per-slot integer (the drag solve's
+  // node numbers).
+  void copy_to_ghosts(std::vector<long>& per_slot);
+
+  // COLLECTIVE. Every particle goes to the rank owning its home block (claimed if new).
+  void migrate(Particles<Dim>& water, Particles<Dim>& soil);
+  // COLLECTIVE. Partitions when forced (the first distribution) or when the measurement due at
+  // this step finds the load above the threshold; then migrates. True when it partitioned.
+  bool balance(long long step, Particles<Dim>& water, Particles<Dim>& soil, bool force = false);
+
+  // The owner table for checkpoints: the blocks this rank owns, and the table rebuilt from every
+  // rank's. restore() is COLLECTIVE.
+  std::vector<long long> owned_keys() const;
+  void restore(const std::vector<long long>& mine);
+
+ private:
+  Index<Dim> home(const Vec<Dim>& x) const;
+  void partition(const Particles<Dim>& water, const Particles<Dim>& soil);
+
+  mpi::Comm comm_;
+  DecompositionSettings s_;
+  double h_;
+  BlockOwners owners_;
+  HaloExchange<Dim> halo_;
+  DecompositionStats stats_;
+};
+
+extern template class DomainDecomposition<2>;
+extern template class DomainDecomposition<3>;
+
+}  // namespace suite::mpm2grid

@@ -1,0 +1,110 @@
+#include "solvers/mpm2grid/decomposition/partition.hpp"
+
+#include <metis.h>
+
+#include <algorithm>
+#include <tuple>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "solvers/mpm2grid/grid/block_grid.hpp"
+
+namespace suite::mpm2grid {
+
+template <int Dim>
+std::vector<int> partition_blocks(const std::vector<Index<Dim>>& blocks,
+                                  const std::vector<std::array<long long, 2>>& weights, int parts) {
+  const std::size_t n = blocks.size();
+  if (weights.size() != n) throw LibraryError("partition_blocks: one weight pair per block expected");
+  std::vector<int> part(n, 0);
+  if (parts <= 1 || n == 0) return part;
+  if (n <= static_cast<std::size_t>(parts)) {
+    for (std::size_t i = 0; i < n; ++i) part[i] = static_cast<int>(i);
+    return part;
+  }
+  // The adjacency graph in compressed rows: the 3^Dim - 1 neighbours of each block that exist.
+  using Grid = BlockGrid<Dim>;
+  std::unordered_map<typename Grid::Key, idx_t> index;
+  index.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) index.emplace(Grid::key(blocks[i]), static_cast<idx_t>(i));
+  int around = 1;
+  for (int d = 0; d < Dim; ++d) around *= 3;
+  std::vector<idx_t> xadj{0}, adjncy;
+  xadj.reserve(n + 1);
+  adjncy.reserve(n * static_cast<std::size_t>(around - 1));
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int o = 0; o < around; ++o) {
+      Index<Dim> b = blocks[i];
+      int r = o, centre = 1;
+      for (int d = 0; d < Dim; ++d) {
+        const int step = r % 3 - 1;
+        b[d] += step;
+        centre &= step == 0;
+        r /= 3;
+      }
+      if (centre) continue;
+      const auto it = index.find(Grid::key(b));
+      if (it != index.end()) adjncy.push_back(it->second);
+    }
+    xadj.push_back(static_cast<idx_t>(adjncy.size()));
+  }
+  // The constraints: the species present anywhere (one weight of 1 per block if none is).
+  std::array<long long, 2> total{0, 0};
+  for (const auto& w : weights) total[0] += w[0], total[1] += w[1];
+  std::vector<int> species;
+  for (int s = 0; s < 2; ++s)
+    if (total[static_cast<std::size_t>(s)] > 0) species.push_back(s);
+  idx_t ncon = std::max<idx_t>(1, static_cast<idx_t>(species.size()));
+  std::vector<idx_t> vwgt(n * static_cast<std::size_t>(ncon), 1);
+  if (!species.empty())
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t c = 0; c < species.size(); ++c)
+        vwgt[i * species.size() + c] = static_cast<idx_t>(weights[i][static_cast<std::size_t>(species[c])]);
+  std::vector<real_t> ubvec(static_cast<std::size_t>(ncon), static_cast<real_t>(1.05));
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_SEED] = 1;
+  idx_t nvtxs = static_cast<idx_t>(n), nparts = parts, objval = 0;
+  std::vector<idx_t> result(n, 0);
+  const int status = METIS_PartGraphKway(&nvtxs, &ncon, xadj.data(), adjncy.data(), vwgt.data(), nullptr, nullptr,
+                                         &nparts, nullptr, ubvec.data(), options, &objval, result.data());
+  if (status != METIS_OK)
+    throw LibraryError(fmt::format("METIS_PartGraphKway failed (status {}) on {} blocks for {} ranks", status, n, parts));
+  for (std::size_t i = 0; i < n; ++i) part[i] = static_cast<int>(result[i]);
+  return part;
+}
+
+std::vector<int> keep_ranks(const std::vector<int>& parts, const std::vector<int>& previous,
+                            const std::vector<long long>& weight, int ranks) {
+  const auto R = static_cast<std::size_t>(ranks);
+  std::vector<long long> shared(R * R, 0);  // [new part][old rank]
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    if (previous[i] >= 0) shared[static_cast<std::size_t>(parts[i]) * R + static_cast<std::size_t>(previous[i])] += weight[i] + 1;
+  std::vector<std::tuple<long long, int, int>> pairs;  // (-shared work, part, rank): largest first, ties by index
+  for (std::size_t p = 0; p < R; ++p)
+    for (std::size_t r = 0; r < R; ++r)
+      if (shared[p * R + r] > 0) pairs.emplace_back(-shared[p * R + r], static_cast<int>(p), static_cast<int>(r));
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<int> rank_of(R, -1);
+  std::vector<char> taken(R, 0);
+  for (const auto& [w, p, r] : pairs)
+    if (rank_of[static_cast<std::size_t>(p)] < 0 && !taken[static_cast<std::size_t>(r)])
+      rank_of[static_cast<std::size_t>(p)] = r, taken[static_cast<std::size_t>(r)] = 1;
+  std::size_t next = 0;
+  for (std::size_t p = 0; p < R; ++p) {
+    if (rank_of[p] >= 0) continue;
+    while (taken[next]) ++next;
+    rank_of[p] = static_cast<int>(next);
+    taken[next] = 1;
+  }
+  std::vector<int> out(parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) out[i] = rank_of[static_cast<std::size_t>(parts[i])];
+  return out;
+}
+
+template std::vector<int> partition_blocks<2>(const std::vector<Index<2>>&, const std::vector<std::array<long long, 2>>&, int);
+template std::vector<int> partition_blocks<3>(const std::vector<Index<3>>&, const std::vector<std::array<long long, 2>>&, int);
+
+}  // namespace suite::mpm2grid

@@ -1,0 +1,86 @@
+// The pieces of the domain decomposition (decomposition/) that need no second rank: the METIS
+// partition of a block graph balances both species' particle counts within METIS's tolerance
+// (5%) and keeps each part in one piece; keep_ranks renames parts so that work stays where it
+// was; block keys round-trip; a particle's packed state round-trips exactly. The decomposition
+// over ranks as a whole is tested end to end (1 vs 2 ranks, run_ranks_agree.sh).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <set>
+
+#include "solvers/mpm2grid/decomposition/partition.hpp"
+#include "solvers/mpm2grid/grid/block_grid.hpp"
+#include "solvers/mpm2grid/particles/particles.hpp"
+
+namespace suite::mpm2grid {
+namespace {
+
+TEST(Partition, BalancesBothSpeciesOverConnectedParts) {
+  // A 24 x 6 strip of blocks: soil in the left third (100 particles a block), water elsewhere
+  // (30 a block). A split by block count would give one rank all the soil.
+  std::vector<Index<2>> blocks;
+  std::vector<std::array<long long, 2>> weights;
+  for (int j = 0; j < 6; ++j)
+    for (int i = 0; i < 24; ++i) {
+      blocks.push_back({i, j});
+      weights.push_back(i < 8 ? std::array<long long, 2>{100, 0} : std::array<long long, 2>{0, 30});
+    }
+  for (const int parts : {2, 3, 4}) {
+    const auto part = partition_blocks<2>(blocks, weights, parts);
+    std::vector<std::array<long long, 2>> load(static_cast<std::size_t>(parts), {0, 0});
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+      for (int s = 0; s < 2; ++s) load[static_cast<std::size_t>(part[b])][static_cast<std::size_t>(s)] += weights[b][static_cast<std::size_t>(s)];
+    for (int s = 0; s < 2; ++s) {
+      const double mean = (s == 0 ? 4800.0 : 4320.0) / parts;
+      for (const auto& l : load) EXPECT_LE(static_cast<double>(l[static_cast<std::size_t>(s)]), 1.05 * mean + 100) << parts << " parts, species " << s;
+    }
+  }
+}
+
+TEST(Partition, KeepRanksFollowsTheWork) {
+  // Parts 0 and 1 swapped against the old owners: renaming gives every block its old rank back.
+  const std::vector<int> parts{1, 1, 1, 0, 0, 0}, previous{0, 0, 0, 1, 1, 1};
+  const std::vector<long long> work(6, 10);
+  EXPECT_EQ(keep_ranks(parts, previous, work, 2), previous);
+  // No previous owner: the parts keep their names.
+  EXPECT_EQ(keep_ranks(parts, std::vector<int>(6, -1), work, 2), parts);
+  // Three parts, old work all on rank 0: the part holding most of it stays there, the others
+  // take ranks 1 and 2.
+  const auto renamed = keep_ranks({2, 2, 2, 0, 1, 1}, {0, 0, 0, 0, -1, -1}, {5, 5, 5, 1, 1, 1}, 3);
+  EXPECT_EQ(renamed[0], 0);
+  EXPECT_EQ(std::set<int>(renamed.begin(), renamed.end()), (std::set<int>{0, 1, 2}));
+}
+
+TEST(BlockGrid, KeysRoundTrip) {
+  for (const Index<3>& b : {Index<3>{0, 0, 0}, Index<3>{-5, 17, -1000}, Index<3>{1 << 19, -(1 << 20), 3}})
+    EXPECT_EQ(BlockGrid<3>::unkey(BlockGrid<3>::key(b)), b);
+  for (const Index<2>& b : {Index<2>{-1, 2}, Index<2>{123456, -654321}}) EXPECT_EQ(BlockGrid<2>::unkey(BlockGrid<2>::key(b)), b);
+  // A particle's home block holds the lower corner of its cell (node floor(x / h)).
+  BlockGrid<2> grid(0.5);
+  EXPECT_EQ(grid.home_block(Vec<2>(1.99, -0.01)), (Index<2>{0, -1}));
+  EXPECT_EQ(grid.home_block(Vec<2>(2.0, 0.0)), (Index<2>{1, 0}));
+}
+
+TEST(Particles, PackedStateRoundTrips) {
+  Particles<3> a, b;
+  a.add(Vec<3>(1, 2, 3), Vec<3>(-1, 0.5, 2), 7.5, 0.125);
+  a.C[0] = Mat<3>::Random(), a.F[0] = Mat<3>::Random();
+  a.J[0] = 0.97, a.log_jp[0] = -0.01, a.saturation[0] = 0.4;
+  std::vector<double> buffer;
+  a.pack(0, buffer);
+  ASSERT_EQ(buffer.size(), static_cast<std::size_t>(Particles<3>::kPacked));
+  b.add_packed(buffer.data());
+  EXPECT_EQ(b.x[0], a.x[0]);
+  EXPECT_EQ(b.v[0], a.v[0]);
+  EXPECT_EQ(b.C[0], a.C[0]);
+  EXPECT_EQ(b.F[0], a.F[0]);
+  EXPECT_EQ(b.mass[0], a.mass[0]);
+  EXPECT_EQ(b.volume0[0], a.volume0[0]);
+  EXPECT_EQ(b.J[0], a.J[0]);
+  EXPECT_EQ(b.log_jp[0], a.log_jp[0]);
+  EXPECT_EQ(b.saturation[0], a.saturation[0]);
+}
+
+}  // namespace
+}  // namespace suite::mpm2grid
