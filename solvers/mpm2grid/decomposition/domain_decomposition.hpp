@@ -57,13 +57,18 @@ class DomainDecomposition {
   // Per block of the prepared grid: 1 where this rank owns it.
   const std::vector<char>& owned_blocks() const { return halo_.owned(); }
 
-  // COLLECTIVE. Owners get the complete sums of mass, momentum, force (before gravity) and drag.
+  // COLLECTIVE. Owners get the complete sums of mass, momentum, force (before gravity), drag and
+  // the water's pressure sums.
   void sum_to_owners(NodeFields<Dim>& soil, NodeFields<Dim>& water);
   // COLLECTIVE. Ghost nodes get their owners' velocities (both species) and water mass.
   void copy_to_ghosts(NodeFields<Dim>& soil, NodeFields<Dim>& water);
   // COLLECTIVE. Ghost nodes get their owners' values of a per-slot integer (the drag solve's
   // node numbers).
   void copy_to_ghosts(std::vector<long>& per_slot);
+  // COLLECTIVE. The same for a per-slot value (the water's node pressure).
+  void copy_to_ghosts(std::vector<double>& per_slot);
+  // COLLECTIVE. Owners add the ghost copies of a per-slot vector (the buoyancy on the soil).
+  void sum_to_owners(std::vector<Vec<Dim>>& per_slot);
 
   // COLLECTIVE. Every particle goes to the rank owning its home block (claimed if new).
   void migrate(Particles<Dim>& water, Particles<Dim>& soil);

@@ -165,6 +165,8 @@ struct NodeFields {
   std::vector<Vec<Dim>> force;       // N: internal + gravity
   std::vector<Vec<Dim>> velocity;    // m/s after the grid solve
   std::vector<double> drag;          // kg/s: sum_p c_E,p V_p w_ip (soil only)
+  std::vector<double> pressure;      // water only, with buoyancy: sum_p w_ip m_p p_p after P2G,
+                                     // then the mass-weighted pressure (Pa)
 
   void reset(std::size_t nodes) {
     mass.assign(nodes, 0.0);
@@ -172,6 +174,7 @@ struct NodeFields {
     force.assign(nodes, Vec<Dim>::Zero());
     velocity.assign(nodes, Vec<Dim>::Zero());
     drag.assign(nodes, 0.0);
+    pressure.assign(nodes, 0.0);
   }
 };
 

@@ -55,6 +55,9 @@ template <int Dim>
 void Simulation<Dim>::stresses() {
   water_tau_.resize(water_.size());
   for (std::size_t p = 0; p < water_.size(); ++p) water_tau_[p] = s_.water.eos.template kirchhoff<Dim>(water_.J[p]);
+  water_pressure_.clear();
+  if (s_.buoyancy)
+    for (std::size_t p = 0; p < water_.size(); ++p) water_pressure_.push_back(s_.water.eos.pressure(water_.J[p]));
   soil_tau_.resize(soil_.size());
   soil_drag_.resize(soil_.size());
   const double c_e = s_.soil.drag_coefficient(s_.water.density);
@@ -69,9 +72,10 @@ void Simulation<Dim>::step(double dt) {
   if (dd_) dd_->balance(steps_, water_, soil_);
   build_grid();
   stresses();
-  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_);
+  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_);
   particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_);
   if (dd_) dd_->sum_to_owners(soil_nodes_, water_nodes_);
+  if (s_.buoyancy) add_buoyancy();
   for (std::size_t i = 0; i < grid_.nodes(); ++i) {
     water_nodes_.force[i] += water_nodes_.mass[i] * s_.gravity;
     soil_nodes_.force[i] += soil_nodes_.mass[i] * s_.gravity;
@@ -110,6 +114,31 @@ void Simulation<Dim>::solve_grid(double dt) {
   auto numbering = NodeNumbering::own_blocks(*comm_, soil_nodes_, water_nodes_, dd_->owned_blocks());
   dd_->copy_to_ghosts(numbering.global);
   drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering);
+}
+
+// The Archimedes force on the soil from the water grid's pressure (see the header). Every rank
+// of a decomposition takes part (the halo copies), with or without particles.
+template <int Dim>
+void Simulation<Dim>::add_buoyancy() {
+  auto& p = water_nodes_.pressure;
+  for (std::size_t i = 0; i < grid_.nodes(); ++i) p[i] = water_nodes_.mass[i] > 0 ? p[i] / water_nodes_.mass[i] : 0.0;
+  if (dd_) dd_->copy_to_ghosts(p);
+  buoyancy_.assign(grid_.nodes(), Vec<Dim>::Zero());
+  const double solid = 1 - s_.soil.porosity;
+  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  for (std::size_t q = 0; q < soil_.size(); ++q) {
+    const Stencil<Dim> st(soil_.x[q], s_.h);
+    grid_.stencil_slots(st, slots);
+    Vec<Dim> grad = Vec<Dim>::Zero();
+    int n = 0;
+    st.for_each([&](const Index<Dim>& k, const Index<Dim>&) { grad += p[static_cast<std::size_t>(slots[n++])] * st.gradient(k); });
+    if (grad.isZero(0.0)) continue;
+    const Vec<Dim> force = -solid * soil_.volume0[q] * soil_.F[q].determinant() * grad;
+    n = 0;
+    st.for_each([&](const Index<Dim>& k, const Index<Dim>&) { buoyancy_[static_cast<std::size_t>(slots[n++])] += st.weight(k) * force; });
+  }
+  if (dd_) dd_->sum_to_owners(buoyancy_);
+  for (std::size_t i = 0; i < grid_.nodes(); ++i) soil_nodes_.force[i] += buoyancy_[i];
 }
 
 template <int Dim>

@@ -17,8 +17,17 @@
 // the grid blocks it owns, with one reverse halo sum after P2G, one forward halo copy after the
 // grid solve and the particles' migration to their new owners (decomposition/); the sums over
 // particles (masses, energies, the outflow) are then over all ranks.
-// Buoyancy is not modelled yet: both species feel gravity with their own masses, and the only
-// exchange between them is the drag.
+// Buoyancy (spec/mpm2grid.md, "Buoyancy"; on unless a scene turns it off): the soil skeleton
+// feels the water's pressure field, the Archimedes force -(1 - n) V_s grad p on each soil
+// particle, with grad p = sum_i p_i grad w_ip from the water grid's node pressures
+// p_i = sum_p w_ip m_p p_p / m_i (0 where there is no water). Submerged, the skeleton then
+// carries the effective stress (gamma_sat - gamma_w) z and the pore water the hydrostatic
+// pressure. The water gets no reaction: in this two-grid model the water does not see the
+// solid's volume (it flows through the soil at its own density, and a soil region filled with
+// water holds a full water particle at each lattice point, water.fill_pores), so its own
+// pressure already balances its weight; the soil's weight less its buoyancy rests on the walls
+// through the skeleton. The exchange between the species that conserves their total momentum is
+// the drag.
 #include <memory>
 #include <optional>
 #include <string>
@@ -68,6 +77,7 @@ struct SimulationSettings {
   double dt_max = 1e-3;    // s
   std::optional<InletSettings<Dim>> inlet;  // water inlet on the x_low side, if any
   DecompositionSettings decomposition;      // load checks and rebalancing over several ranks
+  bool buoyancy = true;                     // the water's pressure acts on the soil skeleton
 };
 
 // What limits the time step, for the log.
@@ -146,13 +156,15 @@ class Simulation {
   void update_saturation();
   void remove_outflow();
   void solve_grid(double dt);
+  void add_buoyancy();
 
   SimulationSettings<Dim> s_;
   Particles<Dim> water_, soil_;
   BlockGrid<Dim> grid_;
   NodeFields<Dim> water_nodes_, soil_nodes_;
   std::vector<Mat<Dim>> water_tau_, soil_tau_, grad_v_;
-  std::vector<double> soil_drag_;
+  std::vector<double> soil_drag_, water_pressure_;
+  std::vector<Vec<Dim>> buoyancy_;  // per node slot, N
   std::optional<mpi::Comm> comm_;
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;
   SolveStats drag_stats_{};

@@ -139,6 +139,8 @@ Scene<Dim> read_scene(const config::Config& cfg) {
     sim.water.density = w->quantity("density", "kg/m^3", 1000.0, Range::positive());
     sim.water.eos.bulk_modulus = w->quantity("bulk_modulus", "Pa", Range::positive());
     sim.water.eos.gamma = w->number("gamma", 7.0, Range::positive());
+    sc.fill_pores = w->get<bool>("fill_pores", false);
+    if (w->has("hydrostatic_surface")) sc.hydrostatic_surface = w->quantity("hydrostatic_surface", "m");
     sc.water_regions = read_regions(*w, Dim, lo[1]);
     for (const auto& r : sc.water_regions) check_inside<Dim>(*w, r, sim.walls.lo, sim.walls.hi, "water");
   }
@@ -172,6 +174,8 @@ Scene<Dim> read_scene(const config::Config& cfg) {
   if (sc.water_regions.empty() && sc.soil_regions.empty() && !sim.inlet)
     root.reject("water", "the scene has no material: give water: {regions: ...} or soil: {regions: ...}");
 
+  // Buoyancy needs both species; a scene with one does not pay for it.
+  sim.buoyancy = root.get<bool>("buoyancy", true) && root.has("water") && root.has("soil");
   const auto drag = root.choice("drag", {"lumped", "consistent", "explicit"}, "lumped");
   sim.drag = drag == "lumped" ? DragScheme::lumped : drag == "consistent" ? DragScheme::consistent
                                                                           : DragScheme::explicit_euler;
@@ -199,7 +203,8 @@ std::vector<double> Scene<Dim>::fingerprint() const {
                         time.end, time.series, time.output, s.water.density, s.water.eos.bulk_modulus,
                         s.water.eos.gamma, s.soil.density, s.soil.porosity, s.soil.conductivity,
                         double(static_cast<int>(s.drag)), double(s.decomposition.check_every),
-                        s.decomposition.imbalance};
+                        s.decomposition.imbalance, double(s.buoyancy), double(fill_pores),
+                        hydrostatic_surface.value_or(-1e300)};
   for (int d = 0; d < Dim; ++d) f.insert(f.end(), {s.walls.lo[d], s.walls.hi[d]});
   if (s.inlet) f.insert(f.end(), {s.inlet->height, s.inlet->discharge(0), s.inlet->discharge.cumulative(time.end)});
   return f;
@@ -228,10 +233,16 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim) {
       x[d] = s.walls.lo[d] + (static_cast<double>(r % count[d]) + 0.5) * spacing;
       r /= count[d];
     }
-    if (inside(sc.soil_regions, x)) {
-      sim.soil().add(x, Vec<Dim>::Zero(), s.soil.density * volume, volume);
-    } else if (inside(sc.water_regions, x)) {
-      sim.water().add(x, Vec<Dim>::Zero(), s.water.density * volume, volume);
+    const bool soil = inside(sc.soil_regions, x);
+    if (soil) sim.soil().add(x, Vec<Dim>::Zero(), s.soil.density * volume, volume);
+    if ((!soil || sc.fill_pores) && inside(sc.water_regions, x)) {
+      double J = 1;
+      if (sc.hydrostatic_surface) {
+        const double p = s.water.density * std::abs(s.gravity[1]) * std::max(0.0, *sc.hydrostatic_surface - x[1]);
+        J = std::pow(1 + p / s.water.eos.bulk_modulus, -1 / s.water.eos.gamma);
+      }
+      sim.water().add(x, Vec<Dim>::Zero(), s.water.density * volume, volume / J);
+      sim.water().J.back() = J;
     }
   }
 }

@@ -26,9 +26,14 @@
 // Soil cohesion: `cohesion` (Pa, c0 of dry soil), or `cohesion_shift` (the dissertation's
 // dimensionless strain-space c_C, mapped to c0 = K tan(phi_f) c_C / alpha, see
 // cohesion_of_strain_shift in materials/hencky_drucker_prager.hpp).
+// Buoyancy: `buoyancy: true` (the default with both species; model/simulation.hpp). Water:
+// `fill_pores: true` puts a water particle also at the soil regions' lattice points inside water
+// regions (saturated soil; by default soil takes the point); `hydrostatic_surface: 0.4 m` starts
+// the water at the hydrostatic pressure under that level (without it at p = 0, J = 1).
 // Regions: `box` {lo, hi} (m), or `trapezoid` (a dam cross-section in x-y standing on the
 // domain's floor, extruded over z in 3D): upstream toe at x = toe, height, crest width, slopes
 // as V/H. Water regions leave out the points inside soil regions.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,6 +70,9 @@ struct Scene {
   SimulationSettings<Dim> simulation;
   int particles_per_cell = 2;  // per axis
   std::vector<Region> water_regions, soil_regions;
+  bool fill_pores = false;  // water regions also fill the soil regions they overlap (saturated soil)
+  std::optional<double> hydrostatic_surface;  // y (m) of the free surface the water starts at rest
+                                              // under: p = rho_w g (surface - y), J from p
   TimeSettings time;
   std::string petsc_options;  // PETSc options database string for the consistent drag (prefix drag_)
   checkpoint::ScheduleSettings checkpoints;  // checkpoint: {every_steps, every (wall time), keep}
@@ -80,7 +88,9 @@ int scene_dimension(const config::Config& scene);
 template <int Dim>
 Scene<Dim> read_scene(const config::Config& scene);
 
-// Particles on a regular lattice, particles_per_cell per axis in every cell, where the regions are.
+// Particles on a regular lattice, particles_per_cell per axis in every cell, where the regions are;
+// water at the hydrostatic J under hydrostatic_surface if given (volume0 = lattice volume / J, so
+// that the particle fills its lattice cell at the hydrostatic pressure).
 template <int Dim>
 void seed_particles(const Scene<Dim>& scene, Simulation<Dim>& simulation);
 

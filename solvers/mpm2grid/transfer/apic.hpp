@@ -24,10 +24,10 @@ void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid) {
 
 // Adds one species' particles to its node fields (reset to the grid's size by the caller).
 // tau: one Kirchhoff stress per particle (Pa), or empty for none; drag: c_E V per particle
-// (kg/s), or empty.
+// (kg/s), or empty; pressure: p per particle (Pa), added as w m p, or empty.
 template <int Dim>
 void particles_to_grid(const Particles<Dim>& P, const std::vector<Mat<Dim>>& tau, const std::vector<double>& drag,
-                       const BlockGrid<Dim>& grid, NodeFields<Dim>& nodes) {
+                       const BlockGrid<Dim>& grid, NodeFields<Dim>& nodes, const std::vector<double>& pressure = {}) {
   const double h = grid.spacing();
   std::array<long, BlockGrid<Dim>::kNodes> slots;
   for (std::size_t p = 0; p < P.size(); ++p) {
@@ -45,6 +45,7 @@ void particles_to_grid(const Particles<Dim>& P, const std::vector<Mat<Dim>>& tau
       nodes.momentum[i] += w * m * (P.v[p] + P.C[p] * (xi - P.x[p]));
       if (!tau.empty()) nodes.force[i] -= stress * s.gradient(k);
       if (!drag.empty()) nodes.drag[i] += w * drag[p];
+      if (!pressure.empty()) nodes.pressure[i] += w * m * pressure[p];
     });
   }
 }
