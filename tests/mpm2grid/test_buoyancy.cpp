@@ -6,7 +6,7 @@
 //   the floor is too high by about 23% of rho g H at every h (the B-spline's missing boundary term
 //   at a wall), so the error's L1 norm over the depth converges at first order and its RMS at
 //   half order: the test asks first order of the L1 norm;
-// - a submerged soil layer (saturated: water fills its pores, water.fill_pores) in a tank carries
+// - a submerged soil layer (saturated: water fills its pores, a soil region's saturated: true) in a tank carries
 //   the effective stress (gamma_sat - gamma_w) z = (rho_d - (1 - n) rho_w) g z, and its pore water
 //   the hydrostatic pressure; without buoyancy the skeleton carries its dry weight rho_d g z.
 // Both through scenes (scenes/scene.hpp) and whole steps of the model.
@@ -119,10 +119,10 @@ dimension: 2
 grid: {{spacing: 0.0125 m, particles_per_cell: 2}}
 domain: {{lo: [0, 0], hi: [0.1, 0.5]}}
 walls: {{x_low: slip, x_high: slip, y_low: slip, y_high: slip}}
-water: {{density: 1000 kg/m^3, bulk_modulus: 100 kPa, gamma: 7, hydrostatic_surface: {} m, fill_pores: true,
+water: {{density: 1000 kg/m^3, bulk_modulus: 100 kPa, gamma: 7, hydrostatic_surface: {} m,
          regions: [{{box: {{lo: [0, 0], hi: [0.1, {}]}}}}]}}
 soil: {{density: 1600 kg/m^3, young: 5 MPa, poisson: 0.3, friction_angle: 35 deg, cohesion: 0 Pa, porosity: 0.4,
-        conductivity: 1e-3 m/s, regions: [{{box: {{lo: [0, 0], hi: [0.1, {}]}}}}]}}
+        conductivity: 1e-3 m/s, regions: [{{box: {{lo: [0, 0], hi: [0.1, {}]}}, saturated: true}}]}}
 buoyancy: {}
 time: {{end: 0.3 s}}
 )",

@@ -9,6 +9,8 @@
 // condition of the computed quantity); exact algebraic identities (no SVD) to 1e-14.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <Eigen/Geometry>  // AngleAxis
 #include <Eigen/LU>        // inverse()
 #include <algorithm>
@@ -230,7 +232,7 @@ TYPED_TEST(DruckerPragerTest, ShearFarOutsideReturnsExactlyOntoTheCone) {
   for (double c : {0.0, kCohesion})
     for (double S : {0.0, 0.3}) {
       const HenckyDruckerPrager m = sand(c);
-      const double M = m.friction_slope(), q_c = m.cohesion_intercept(S);
+      const double M = m.template friction_slope<Dim>(), q_c = m.template cohesion_intercept<Dim>(S);
       const Vector<Dim> eps_tr = strain<Dim>(-0.01, 0.2);  // q_tr ~ 2.6e6 Pa >> M p ~ 1.1e5 Pa
       const Matrix<Dim> F = with_strain<Dim>(eps_tr, rng);
       const ReturnResult<Dim> r = m.template project<Dim>(F, 0.0, S);
@@ -254,6 +256,24 @@ TYPED_TEST(DruckerPragerTest, ShearFarOutsideReturnsExactlyOntoTheCone) {
       EXPECT_EQ(r.log_jp, 0.0);  // nothing stored: the cone return keeps the volume
       EXPECT_GT(r.plastic_strain, 0.0);
     }
+}
+
+// In 2D the cone is Mohr-Coulomb in the plane: a state returned onto it has
+// (s1 - s2) / 2 = p sin(phi_f) + c cos(phi_f) (compression positive), with the scene's phi_f.
+TEST(DruckerPrager2D, ConeIsMohrCoulombInThePlane) {
+  std::mt19937 rng(5);
+  for (double c : {0.0, kCohesion}) {
+    const HenckyDruckerPrager m = sand(c);
+    const Vector<2> eps_tr = strain<2>(-0.01, 0.2);
+    const ReturnResult<2> r = m.template project<2>(with_strain<2>(eps_tr, rng), 0.0, 0.0);
+    ASSERT_EQ(r.kind, ReturnCase::cone);
+    const Matrix<2> tau = m.template kirchhoff<2>(r.F);
+    const Eigen::SelfAdjointEigenSolver<Matrix<2>> principal(tau);
+    const double s1 = -principal.eigenvalues()[0], s2 = -principal.eigenvalues()[1];  // compression positive
+    const double radius = 0.5 * std::abs(s1 - s2), centre = 0.5 * (s1 + s2);
+    const double phi = m.friction_angle;
+    EXPECT_NEAR(radius, centre * std::sin(phi) + c * std::cos(phi), 1e-9 * radius) << "c = " << c;
+  }
 }
 
 TYPED_TEST(DruckerPragerTest, TensionWithoutCohesionGoesToTheApex) {
@@ -280,11 +300,11 @@ TYPED_TEST(DruckerPragerTest, CohesionHoldsSmallTensionOnlyWhileDry) {
   constexpr int Dim = TypeParam::value;
   std::mt19937 rng(23);
   const HenckyDruckerPrager m = sand(kCohesion);
-  const double K = m.template bulk_modulus<Dim>(), M = m.friction_slope();
-  const double tr_apex_dry = m.cohesion_intercept(0.0) / (M * K);  // tip of the dry cone, log strain
+  const double K = m.template bulk_modulus<Dim>(), M = m.template friction_slope<Dim>();
+  const double tr_apex_dry = m.template cohesion_intercept<Dim>(0.0) / (M * K);  // tip of the dry cone, log strain
   // Half-way to the dry tip in tension with a small shear (q = 5% of the dry cone's q there).
   const double tr = 0.5 * tr_apex_dry;
-  const double q_allowed = M * (-K * tr) + m.cohesion_intercept(0.0);
+  const double q_allowed = M * (-K * tr) + m.template cohesion_intercept<Dim>(0.0);
   const double d = 0.05 * q_allowed / (2 * m.mu * std::sqrt(1.5) * std::sqrt(2.0));
   const Matrix<Dim> F = with_strain<Dim>(strain<Dim>(tr, d), rng);
 
@@ -300,7 +320,7 @@ TYPED_TEST(DruckerPragerTest, CohesionHoldsSmallTensionOnlyWhileDry) {
     // At the tip: p = -q_c(S) / M and q = 0. Through one SVD, the stresses carry ~1e-16 of the
     // stiffness (~3e7 Pa) as round-off: absolute 1e-12 * stiffness ~ 3e-5 Pa, against q_c ~ 1e4 Pa.
     const double tol = 1e-12 * (2 * m.mu + Dim * m.lambda);
-    EXPECT_NEAR(st.p, -m.cohesion_intercept(S) / M, tol) << "S = " << S;
+    EXPECT_NEAR(st.p, -m.template cohesion_intercept<Dim>(S) / M, tol) << "S = " << S;
     EXPECT_NEAR(st.q, 0.0, tol) << "S = " << S;
   }
   // Saturation beyond [0, 1] is clamped: the same cohesion as the end of the range.
@@ -311,16 +331,17 @@ TYPED_TEST(DruckerPragerTest, CohesionHoldsSmallTensionOnlyWhileDry) {
 
 TYPED_TEST(DruckerPragerTest, FrictionlessCohesiveSoilHasNoApex) {
   constexpr int Dim = TypeParam::value;
-  // phi_f = 0: M = 0, the surface is the cylinder q <= q_c (= 2 c); tension is held elastically.
+  // phi_f = 0: M = 0, the surface is the cylinder q <= q_c (2 c in 3D, sqrt(3) c in 2D: Tresca's
+  // |s1 - s2| / 2 <= c in the plane); tension is held elastically.
   const HenckyDruckerPrager m = HenckyDruckerPrager::from_young(kYoung, kPoisson, 0.0, kCohesion);
-  EXPECT_EQ(m.friction_slope(), 0.0);
-  EXPECT_NEAR(m.cohesion_intercept(0.0), 2 * kCohesion, 1e-9);  // 6 c / 3, exact up to rounding
+  EXPECT_EQ(m.template friction_slope<Dim>(), 0.0);
+  EXPECT_NEAR(m.template cohesion_intercept<Dim>(0.0), (Dim == 2 ? std::sqrt(3.0) : 2.0) * kCohesion, 1e-9);
   const Vector<Dim> tension = strain<Dim>(0.01, 0.0);
   EXPECT_EQ(m.template return_strain<Dim>(tension, 0.0).kind, ReturnCase::elastic);
   const StrainReturn<Dim> r = m.template return_strain<Dim>(strain<Dim>(0.01, 0.1), 0.0);
   ASSERT_EQ(r.kind, ReturnCase::cone);
   // On the cylinder, no SVD involved: 1e-12 relative.
-  EXPECT_LE(rel_err(m.template invariants<Dim>(r.eps).q, 2 * kCohesion), 1e-12);
+  EXPECT_LE(rel_err(m.template invariants<Dim>(r.eps).q, m.template cohesion_intercept<Dim>(0.0)), 1e-12);
 }
 
 TYPED_TEST(DruckerPragerTest, ReturnMappingIsObjective) {

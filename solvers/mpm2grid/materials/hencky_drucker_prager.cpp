@@ -37,17 +37,8 @@ HenckyDruckerPrager HenckyDruckerPrager::from_young(double young, double poisson
   return m;
 }
 
-double HenckyDruckerPrager::friction_slope() const {
-  const double s = std::sin(friction_angle);
-  return 6 * s / (3 - s);
-}
-
 double HenckyDruckerPrager::cohesion_at(double saturation) const {
   return cohesion * (1 - std::clamp(saturation, 0.0, 1.0));
-}
-
-double HenckyDruckerPrager::cohesion_intercept(double saturation) const {
-  return 6 * cohesion_at(saturation) * std::cos(friction_angle) / (3 - std::sin(friction_angle));
 }
 
 double HenckyDruckerPrager::p_wave_speed(double density) const {
@@ -89,8 +80,8 @@ StressInvariants HenckyDruckerPrager::invariants(const Vector<Dim>& eps) const {
 template <int Dim>
 StrainReturn<Dim> HenckyDruckerPrager::return_strain(const Vector<Dim>& eps_trial, double saturation) const {
   const double K = bulk_modulus<Dim>();
-  const double M = friction_slope();
-  const double q_c = cohesion_intercept(saturation);
+  const double M = friction_slope<Dim>();
+  const double q_c = cohesion_intercept<Dim>(saturation);
   const StressInvariants trial = invariants<Dim>(eps_trial);
   const double q_yield = M * trial.p + q_c;  // the cone's q at the trial pressure, Pa
 

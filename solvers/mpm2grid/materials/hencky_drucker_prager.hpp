@@ -17,11 +17,16 @@
 // Plasticity (compression positive). With bulk modulus K = lambda + 2 mu / Dim and
 //   p = -K tr(eps)                       pressure, Pa  (= -tr(tau) / Dim)
 //   q = 2 mu sqrt(3/2) |dev eps|         equivalent shear stress, Pa  (= sqrt(3/2) |dev tau|)
-// the admissible states are q <= M p + q_c, a cone in (p, q) with
+// the admissible states are q <= M p + q_c, a cone in (p, q) with, in 3D,
 //   M   = 6 sin(phi_f) / (3 - sin(phi_f))          (dimensionless slope)
 //   q_c = 6 c cos(phi_f) / (3 - sin(phi_f))        (Pa, the cone's q at p = 0)
 // (the cone through the compression corners of Mohr-Coulomb with friction angle phi_f and
-// cohesion c). The cone's tip (apex) is at p = -q_c / M, i.e. tr(eps) = q_c / (M K) >= 0.
+// cohesion c), and in 2D
+//   M   = sqrt(3) sin(phi_f),   q_c = sqrt(3) c cos(phi_f)
+// which is Mohr-Coulomb in the plane exactly: with two principal stresses q = (sqrt(3)/2)
+// |s1 - s2| and p = (s1 + s2)/2, so q <= M p + q_c reads |s1 - s2| / 2 <= p sin(phi_f) +
+// c cos(phi_f). (The 3D constants in 2D would give sin(phi_2D) = M / sqrt(3): a scene's 30 deg
+// would stand as 43.9 deg, and slopes showed it.) The cone's tip (apex) is at p = -q_c / M, i.e. tr(eps) = q_c / (M K) >= 0.
 // Return mapping of a trial strain (non-associative, zero dilatancy):
 //   apex     if M p_tr + q_c <= 0: eps = (q_c / (M K Dim)) 1, the tip (c = 0: eps = 0, F_E a
 //            rotation, tau = 0: separated grains carry no stress);
@@ -126,12 +131,20 @@ struct HenckyDruckerPrager {
   double bulk_modulus() const {
     return lambda + 2.0 * mu / Dim;
   }
-  // M = 6 sin(phi_f) / (3 - sin(phi_f)), dimensionless.
-  double friction_slope() const;
+  // M: 6 sin(phi_f) / (3 - sin(phi_f)) in 3D, sqrt(3) sin(phi_f) in 2D; dimensionless.
+  template <int Dim>
+  double friction_slope() const {
+    const double s = std::sin(friction_angle);
+    return Dim == 2 ? std::sqrt(3.0) * s : 6 * s / (3 - s);
+  }
   // c(S) = c0 (1 - clamp(S, 0, 1)), Pa.
   double cohesion_at(double saturation) const;
-  // q_c(S) = 6 c(S) cos(phi_f) / (3 - sin(phi_f)), Pa.
-  double cohesion_intercept(double saturation) const;
+  // q_c(S): 6 c(S) cos(phi_f) / (3 - sin(phi_f)) in 3D, sqrt(3) c(S) cos(phi_f) in 2D; Pa.
+  template <int Dim>
+  double cohesion_intercept(double saturation) const {
+    const double c = cohesion_at(saturation) * std::cos(friction_angle);
+    return Dim == 2 ? std::sqrt(3.0) * c : 6 * c / (3 - std::sin(friction_angle));
+  }
   // P-wave speed sqrt((lambda + 2 mu) / rho), m/s, rho in kg/m^3: the fastest elastic wave,
   // for the time-step limit.
   double p_wave_speed(double density) const;
@@ -168,6 +181,7 @@ struct HenckyDruckerPrager {
 // cone's apex is at the tensile volumetric log strain tr(eps) = c_C / alpha. The cone above has
 // its apex at tr(eps) = q_c / (M K) = c0 / (K tan(phi_f)); equal apexes give
 //   c0 = K tan(phi_f) c_C / alpha      (K the bulk modulus, Pa; phi_f > 0).
+// (q_c / M = c0 / tan(phi_f) in 2D and 3D alike.)
 // In 3D the two cones also share their slope in (p, q) (Klar's alpha gives exactly M), so they
 // are the same surface; in 2D Klar's cone is flatter (slope 2/3 of M), and the mapping matches
 // the apex, i.e. the tension the dry soil holds, while the friction stays Mohr-Coulomb's M.

@@ -24,7 +24,7 @@
 // carries the effective stress (gamma_sat - gamma_w) z and the pore water the hydrostatic
 // pressure. The water gets no reaction: in this two-grid model the water does not see the
 // solid's volume (it flows through the soil at its own density, and a soil region filled with
-// water holds a full water particle at each lattice point, water.fill_pores), so its own
+// water holds a full water particle at each lattice point, a soil region's saturated: true), so its own
 // pressure already balances its weight; the soil's weight less its buoyancy rests on the walls
 // through the skeleton. The exchange between the species that conserves their total momentum is
 // the drag.

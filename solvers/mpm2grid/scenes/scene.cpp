@@ -24,8 +24,16 @@ std::vector<double> point(const config::Section& s, const std::string& key, int 
   return v;
 }
 
-Region read_region(const config::Section& s, int dim, double floor) {
+// `soil`: the region belongs to the soil and may say `saturated` (water regions may not), which
+// needs the scene's water section (`water`) for the pore water's density and bulk modulus.
+Region read_region(const config::Section& s, int dim, double floor, bool soil, bool water) {
   Region r;
+  // Read only when given, so that the default does not enter the region's section (whose value
+  // the region errors quote on one line).
+  if (soil && s.has("saturated")) r.saturated = s.get<bool>("saturated");
+  if (r.saturated && !water)
+    s.reject("saturated", "a saturated soil region needs the water: section (density, bulk_modulus) for its "
+                          "pore water; add it, or drop saturated: true");
   const bool box = s.has("box"), trapezoid = s.has("trapezoid");
   if (box == trapezoid) s.reject(box ? "trapezoid" : "box", "give exactly one of box: {lo, hi} or trapezoid: {...}");
   if (box) {
@@ -47,9 +55,10 @@ Region read_region(const config::Section& s, int dim, double floor) {
   return r;
 }
 
-std::vector<Region> read_regions(const config::Section& species, int dim, double floor) {
+std::vector<Region> read_regions(const config::Section& species, int dim, double floor, bool soil = false,
+                                 bool water = false) {
   std::vector<Region> regions;
-  for (const auto& s : species.sections("regions")) regions.push_back(read_region(s, dim, floor));
+  for (const auto& s : species.sections("regions")) regions.push_back(read_region(s, dim, floor, soil, water));
   return regions;
 }
 
@@ -139,7 +148,6 @@ Scene<Dim> read_scene(const config::Config& cfg) {
     sim.water.density = w->quantity("density", "kg/m^3", 1000.0, Range::positive());
     sim.water.eos.bulk_modulus = w->quantity("bulk_modulus", "Pa", Range::positive());
     sim.water.eos.gamma = w->number("gamma", 7.0, Range::positive());
-    sc.fill_pores = w->get<bool>("fill_pores", false);
     if (w->has("hydrostatic_surface")) sc.hydrostatic_surface = w->quantity("hydrostatic_surface", "m");
     sc.water_regions = read_regions(*w, Dim, lo[1]);
     for (const auto& r : sc.water_regions) check_inside<Dim>(*w, r, sim.walls.lo, sim.walls.hi, "water");
@@ -164,7 +172,7 @@ Scene<Dim> read_scene(const config::Config& cfg) {
     }
     sim.soil.porosity = s->number("porosity", 0.4, Range{0.0, 1.0, true, true});
     sim.soil.conductivity = s->quantity("conductivity", "m/s", 1e-4, Range::positive());
-    sc.soil_regions = read_regions(*s, Dim, lo[1]);
+    sc.soil_regions = read_regions(*s, Dim, lo[1], true, root.has("water"));
     for (const auto& r : sc.soil_regions) check_inside<Dim>(*s, r, sim.walls.lo, sim.walls.hi, "soil");
   }
   if (const auto inlet = root.optional_section("inlet")) {
@@ -203,8 +211,8 @@ std::vector<double> Scene<Dim>::fingerprint() const {
                         time.end, time.series, time.output, s.water.density, s.water.eos.bulk_modulus,
                         s.water.eos.gamma, s.soil.density, s.soil.porosity, s.soil.conductivity,
                         double(static_cast<int>(s.drag)), double(s.decomposition.check_every),
-                        s.decomposition.imbalance, double(s.buoyancy), double(fill_pores),
-                        hydrostatic_surface.value_or(-1e300)};
+                        s.decomposition.imbalance, double(s.buoyancy), hydrostatic_surface.value_or(-1e300)};
+  for (const auto& r : soil_regions) f.push_back(double(r.saturated));
   for (int d = 0; d < Dim; ++d) f.insert(f.end(), {s.walls.lo[d], s.walls.hi[d]});
   if (s.inlet) f.insert(f.end(), {s.inlet->height, s.inlet->discharge(0), s.inlet->discharge.cumulative(time.end)});
   return f;
@@ -226,6 +234,22 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim) {
       if (r.template contains<Dim>(x)) return true;
     return false;
   };
+  auto saturated = [&](const Vec<Dim>& x) {
+    for (const auto& r : sc.soil_regions)
+      if (r.saturated && r.template contains<Dim>(x)) return true;
+    return false;
+  };
+  // A water particle filling its lattice cell, at the hydrostatic pressure under
+  // hydrostatic_surface if the scene gives one (J from p, volume0 = volume / J), else at rest.
+  auto add_water = [&](const Vec<Dim>& x) {
+    double J = 1;
+    if (sc.hydrostatic_surface) {
+      const double p = s.water.density * std::abs(s.gravity[1]) * std::max(0.0, *sc.hydrostatic_surface - x[1]);
+      J = std::pow(1 + p / s.water.eos.bulk_modulus, -1 / s.water.eos.gamma);
+    }
+    sim.water().add(x, Vec<Dim>::Zero(), s.water.density * volume, volume / J);
+    sim.water().J.back() = J;
+  };
   for (long long n = 0; n < total; ++n) {
     long long r = n;
     Vec<Dim> x;
@@ -233,16 +257,11 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim) {
       x[d] = s.walls.lo[d] + (static_cast<double>(r % count[d]) + 0.5) * spacing;
       r /= count[d];
     }
-    const bool soil = inside(sc.soil_regions, x);
-    if (soil) sim.soil().add(x, Vec<Dim>::Zero(), s.soil.density * volume, volume);
-    if ((!soil || sc.fill_pores) && inside(sc.water_regions, x)) {
-      double J = 1;
-      if (sc.hydrostatic_surface) {
-        const double p = s.water.density * std::abs(s.gravity[1]) * std::max(0.0, *sc.hydrostatic_surface - x[1]);
-        J = std::pow(1 + p / s.water.eos.bulk_modulus, -1 / s.water.eos.gamma);
-      }
-      sim.water().add(x, Vec<Dim>::Zero(), s.water.density * volume, volume / J);
-      sim.water().J.back() = J;
+    if (inside(sc.soil_regions, x)) {
+      sim.soil().add(x, Vec<Dim>::Zero(), s.soil.density * volume, volume);
+      if (saturated(x)) add_water(x);
+    } else if (inside(sc.water_regions, x)) {
+      add_water(x);
     }
   }
 }

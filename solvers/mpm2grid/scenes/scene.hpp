@@ -27,12 +27,18 @@
 // dimensionless strain-space c_C, mapped to c0 = K tan(phi_f) c_C / alpha, see
 // cohesion_of_strain_shift in materials/hencky_drucker_prager.hpp).
 // Buoyancy: `buoyancy: true` (the default with both species; model/simulation.hpp). Water:
-// `fill_pores: true` puts a water particle also at the soil regions' lattice points inside water
-// regions (saturated soil; by default soil takes the point); `hydrostatic_surface: 0.4 m` starts
-// the water at the hydrostatic pressure under that level (without it at p = 0, J = 1).
+// `hydrostatic_surface: 0.4 m` starts the water at the hydrostatic pressure under that level
+// (without it at p = 0, J = 1).
 // Regions: `box` {lo, hi} (m), or `trapezoid` (a dam cross-section in x-y standing on the
 // domain's floor, extruded over z in 3D): upstream toe at x = toe, height, crest width, slopes
 // as V/H. Water regions leave out the points inside soil regions.
+// A soil region may say `saturated: true` (default false): its pores start full of water. Every
+// soil particle seeded there gets a water particle at the same point, as a water region would
+// seed it (mass rho_w V, volume V, at the hydrostatic J under hydrostatic_surface if given). In
+// this model the water does not see the solid's volume (model/simulation.hpp, buoyancy), so the
+// pore water is water at its own density: its pressure then continues that of free water above
+// the soil, and the soil's saturation is S = min(phi_w / n, 1) = 1 there (c = 0). Needs the
+// water: section (density, bulk_modulus); the scene's water regions stay as they are.
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +54,7 @@ struct Region {
   std::vector<double> lo, hi;  // box, m
   double toe = 0, height = 0, crest_width = 0, upstream_slope = 1, downstream_slope = 1;  // trapezoid
   double floor = 0;  // trapezoid: the y of its base (the domain's floor)
+  bool saturated = false;  // soil regions: seed pore water with the soil (see above)
 
   // True when x lies in the region ([lo, hi) per axis; the trapezoid's cross-section in x-y, half
   // open at its right and top) grown outwards by `margin` (m) along the axes: the trapezoid's
@@ -70,7 +77,6 @@ struct Scene {
   SimulationSettings<Dim> simulation;
   int particles_per_cell = 2;  // per axis
   std::vector<Region> water_regions, soil_regions;
-  bool fill_pores = false;  // water regions also fill the soil regions they overlap (saturated soil)
   std::optional<double> hydrostatic_surface;  // y (m) of the free surface the water starts at rest
                                               // under: p = rho_w g (surface - y), J from p
   TimeSettings time;

@@ -1,0 +1,96 @@
+// Scene seeding (scenes/scene.hpp): a soil region with `saturated: true` starts with its pores
+// full of water, one water particle per soil particle (at the water's own density: the water
+// does not see the solid's volume in this model), so that the soil's saturation seen from the
+// water grid is 1 inside the region and its cohesion c0 (1 - S) is 0.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/config/config.hpp"
+#include "solvers/mpm2grid/model/simulation.hpp"
+#include "solvers/mpm2grid/scenes/scene.hpp"
+
+namespace suite::mpm2grid {
+namespace {
+
+// Two soil blocks side by side on the floor, the left one saturated, the right one dry, 10 cm
+// apart (more than the 2h reach of a cubic B-spline stencil on each side).
+Scene<2> two_blocks() {
+  const auto cfg = config::Config::from_string(R"(
+dimension: 2
+grid: {spacing: 10 mm, particles_per_cell: 2}
+domain: {lo: [0, 0], hi: [0.8, 0.4]}
+walls: {x_low: slip, x_high: slip, y_low: friction, y_high: open}
+water: {density: 1000 kg/m^3, bulk_modulus: 57 kPa, regions: []}
+soil:
+  density: 1800 kg/m^3
+  young: 2 MPa
+  friction_angle: 30 deg
+  cohesion: 1 kPa
+  porosity: 0.4
+  regions:
+    - box: {lo: [0, 0], hi: [0.2, 0.2]}
+      saturated: true
+    - box: {lo: [0.3, 0], hi: [0.5, 0.2]}
+time: {end: 1 s}
+)",
+                                               "two_blocks.yaml");
+  return read_scene<2>(cfg);
+}
+
+TEST(SceneSeeding, ASaturatedSoilRegionGetsOnePoreWaterParticlePerSoilParticle) {
+  const auto scene = two_blocks();
+  ASSERT_TRUE(scene.soil_regions.at(0).saturated);
+  ASSERT_FALSE(scene.soil_regions.at(1).saturated);
+  Simulation<2> sim(scene.simulation);
+  seed_particles(scene, sim);
+  const auto& soil = sim.soil();
+  const auto& water = sim.water();
+  // 0.2 m x 0.2 m at a spacing of 5 mm: 1600 particles per block; water only in the left one.
+  ASSERT_EQ(soil.size(), 3200u);
+  ASSERT_EQ(water.size(), 1600u);
+  const double volume = 0.005 * 0.005;
+  std::size_t w = 0;
+  for (std::size_t p = 0; p < soil.size(); ++p) {
+    if (!scene.soil_regions[0].contains<2>(soil.x[p])) continue;
+    ASSERT_LT(w, water.size());
+    EXPECT_EQ(water.x[w], soil.x[p]) << "pore water seeded at its soil particle's point";
+    EXPECT_DOUBLE_EQ(water.mass[w], 1000.0 * volume);
+    EXPECT_DOUBLE_EQ(water.volume0[w], volume);
+    EXPECT_EQ(water.J[w], 1.0);
+    ++w;
+  }
+  EXPECT_EQ(w, water.size());
+}
+
+TEST(SceneSeeding, PoreWaterSaturatesTheSoilAndRemovesItsCohesion) {
+  const auto scene = two_blocks();
+  Simulation<2> sim(scene.simulation);
+  seed_particles(scene, sim);
+  sim.step(sim.stable_dt().dt);  // the saturation is computed at the end of a step
+  const auto& soil = sim.soil();
+  const double h = scene.simulation.h;
+  int inner = 0;
+  for (std::size_t p = 0; p < soil.size(); ++p) {
+    const auto& x = soil.x[p];
+    const double S = soil.saturation[p];
+    if (x[0] > 0.3) {
+      EXPECT_EQ(S, 0.0) << "the dry block sees no water";
+      continue;
+    }
+    // A particle's saturation reads the nodes within 2h of it, and each of those nodes the
+    // water particles within 2h of the node: farther than 4h from the block's sides, every node
+    // it reads holds rho_w h^2 >= n rho_w h^2, so S = 1 and c = 0. Nearer a side, free surface,
+    // wall or floor alike, some of those nodes miss the water beyond it, and S may fall below 1.
+    if (x[0] > 4 * h && x[0] < 0.2 - 4 * h && x[1] > 4 * h && x[1] < 0.2 - 4 * h) {
+      EXPECT_NEAR(S, 1.0, 1e-9) << "x = " << x.transpose();
+      EXPECT_NEAR(scene.simulation.soil.material.cohesion_at(S), 0.0, 1e-6);
+      ++inner;
+    }
+  }
+  EXPECT_EQ(inner, 576);  // (0.2 - 8h) / (h / 2) = 24 rows and columns
+}
+
+}  // namespace
+}  // namespace suite::mpm2grid
