@@ -143,6 +143,7 @@ class MpmRun {
       if (why) {
         log_.warn("stopped at step {} (t = {} s) on {}; continue with --restart latest", sim_.steps(), sim_.time(),
                   *why);
+        record_extras();
         record_.write(out_ / "run.json", timers_, "stopped: " + *why);
         return 0;
       }
@@ -334,12 +335,17 @@ class MpmRun {
     std::string limits;
     for (const auto& [why, n] : p_.limiters)
       limits += fmt::format("{}{}: {} steps", limits.empty() ? "" : ", ", why, n);
-    record_.extra()["dt_limiters"] = p_.limiters;
-    if (scene_.simulation.drag == DragScheme::consistent) record_.extra()["drag_ksp_max_iterations"] = drag_iterations_;
-    if (const auto* dd = sim_.decomposition()) record_decomposition(*dd, sim_.steps() - first_step_);
+    record_extras();
     record_.write(out_ / "run.json", timers_, "completed");
     log_.info("done: {} steps to t = {} s (dt limited by {}); {} particle files", sim_.steps(), sim_.time(), limits,
               p_.files);
+  }
+
+  // What run.json holds beside the timers, for a finished or a stopped run. COLLECTIVE.
+  void record_extras() {
+    record_.extra()["dt_limiters"] = p_.limiters;
+    if (scene_.simulation.drag == DragScheme::consistent) record_.extra()["drag_ksp_max_iterations"] = drag_iterations_;
+    if (const auto* dd = sim_.decomposition()) record_decomposition(*dd, sim_.steps() - first_step_);
   }
 
   // The decomposition's traffic in run.json: sums over the ranks per step of this run (or of its
