@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""One mpm2grid output folder as one CSV row for the benchmark drivers in this folder.
+    mpm_metrics.py --header               the column names
+    mpm_metrics.py RUN_DIR [RSS_DIR]      the row (RSS_DIR: rss_rank<N>.txt files of /usr/bin/time -f %M)
+
+Columns: status (completed / stopped / failed), ranks, steps (run.json phases.step.calls),
+step_s (the step phase's total on the slowest rank, run.json phases.step.max_s), step_mean_s
+(its mean over the ranks), wall_s (run.json wall_time_s: seeding, partition, output included),
+particles_first / particles_last / particles_mean (water + soil over series.csv; the mean weights
+each series interval by its steps, dt from the row), s_per_step, ns_per_particle_step
+(step_s / (steps x particles_mean), wall time on the slowest rank; multiply by ranks for
+core-ns), the decomposition block (halo and migration bytes per step summed over ranks,
+migrated particles per step, rebalances; empty on 1 rank and on stopped runs, which write no
+decomposition block), drag_ksp_max_iterations (consistent drag only, completed runs only),
+summary.json values (outflow water volume, eroded soil volume, water front, end time; empty
+unless completed), peak RSS of each rank (kB, max and sum over ranks) when RSS_DIR is given, the
+largest kinetic energy in series.csv, dt_first / dt_last / dt_largest: the dt column of series.csv
+(the step before each sample; a step cut to land on a sample time is shorter, never longer).
+A folder without run.json (a run that failed, e.g. the energy blow-up) gives status failed.
+"""
+import csv
+import json
+import sys
+from pathlib import Path
+
+COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "particles_first", "particles_last",
+           "particles_mean", "s_per_step", "ns_per_particle_step", "halo_bytes_per_step",
+           "migration_bytes_per_step", "migrated_particles_per_step", "rebalances", "particles_per_rank",
+           "drag_ksp_max_iterations", "outflow_water_volume", "eroded_soil_volume", "water_front", "end_time",
+           "dt_first", "dt_last", "rss_max_kb", "rss_sum_kb", "kinetic_energy_max", "dt_largest"]
+
+
+def series(run):
+    path = Path(run) / "series.csv"
+    if not path.exists():
+        return []
+    rows = list(csv.reader(path.read_text().splitlines()))
+    if len(rows) < 2:
+        return []
+    head = [h.split(" [")[0] for h in rows[0]]
+    return [dict(zip(head, map(float, r))) for r in rows[1:] if r]
+
+
+def particles_mean(rows):
+    count = lambda r: r["water_particles"] + r["soil_particles"]
+    total = weight = 0.0
+    for a, b in zip(rows, rows[1:]):
+        if b["dt"] > 0:
+            w = (b["time"] - a["time"]) / b["dt"]
+            total += w * 0.5 * (count(a) + count(b))
+            weight += w
+    return total / weight if weight > 0 else (count(rows[0]) if rows else float("nan"))
+
+
+def metrics(run, rss_dir=None):
+    run = Path(run)
+    m = dict.fromkeys(COLUMNS, "")
+    rows = series(run)
+    if rows:
+        m["particles_first"] = int(rows[0]["water_particles"] + rows[0]["soil_particles"])
+        m["particles_last"] = int(rows[-1]["water_particles"] + rows[-1]["soil_particles"])
+        m["particles_mean"] = f"{particles_mean(rows):.1f}"
+        m["kinetic_energy_max"] = f"{max(r['kinetic_energy'] for r in rows):.6g}"
+        dts = [r["dt"] for r in rows if r["dt"] > 0]
+        if dts:
+            m["dt_first"], m["dt_last"], m["dt_largest"] = f"{dts[0]:.6g}", f"{dts[-1]:.6g}", f"{max(dts):.6g}"
+    rj = run / "run.json"
+    if not rj.exists():
+        m["status"] = "failed"
+    else:
+        r = json.loads(rj.read_text())
+        status = r.get("status", "")
+        m["status"] = "completed" if status == "completed" else "stopped" if status.startswith("stopped") else status
+        m["ranks"] = r.get("ranks", "")
+        step = r.get("phases", {}).get("step", {})
+        steps = step.get("calls", 0)
+        m["steps"] = steps
+        m["step_s"] = f"{step.get('max_s', 0):.6g}"
+        m["step_mean_s"] = f"{step.get('mean_s', 0):.6g}"
+        m["wall_s"] = f"{r.get('wall_time_s', 0):.6g}"
+        if steps:
+            m["s_per_step"] = f"{step['max_s'] / steps:.6g}"
+            if rows:
+                m["ns_per_particle_step"] = f"{1e9 * step['max_s'] / (steps * particles_mean(rows)):.5g}"
+        d = r.get("decomposition", {})
+        for k in ("halo_bytes_per_step", "migration_bytes_per_step", "migrated_particles_per_step", "rebalances"):
+            if k in d:
+                m[k] = f"{d[k]:.6g}"
+        if "particles_per_rank" in d:
+            m["particles_per_rank"] = " ".join(str(p) for p in d["particles_per_rank"])
+        m["drag_ksp_max_iterations"] = r.get("drag_ksp_max_iterations", "")
+    sj = run / "summary.json"
+    if sj.exists() and m["status"] == "completed":
+        s = json.loads(sj.read_text())
+        for k in ("outflow_water_volume", "eroded_soil_volume", "water_front", "end_time"):
+            m[k] = f"{s.get(k, float('nan')):.10g}"
+    if rss_dir:
+        kb = [int(p.read_text().split()[-1]) for p in sorted(Path(rss_dir).glob("rss_rank*.txt"))
+              if p.read_text().strip()]
+        if kb:
+            m["rss_max_kb"], m["rss_sum_kb"] = max(kb), sum(kb)
+    return m
+
+
+if __name__ == "__main__":
+    if sys.argv[1] == "--header":
+        print(",".join(COLUMNS))
+    else:
+        m = metrics(sys.argv[1], sys.argv[2] if len(sys.argv) > 2 else None)
+        print(",".join(str(m[c]) for c in COLUMNS))
