@@ -35,20 +35,23 @@ class BlockGrid {
     lookup_.clear();
   }
 
-  // Activates the blocks the stencil's 4^Dim nodes lie in.
+  // The indices of the 2^Dim blocks a stencil may touch, in corner order (-1: not active). A
+  // particle's corners, found once a step (touch), spare the hash lookups of every later transfer
+  // (slots_from_corners); blocks added later do not change the indices of earlier ones.
+  using Corners = std::array<int, kStencilBlocks>;
+
+  // Activates the blocks the stencil's 4^Dim nodes lie in, and gives their indices.
+  void touch(const Stencil<Dim>& s, Corners& corners) {
+    for_stencil_blocks(s, [&](int corner, const Index<Dim>& b) { corners[corner] = activate(b); });
+  }
   void touch(const Stencil<Dim>& s) {
-    for_stencil_blocks(s, [&](int, const Index<Dim>& b) {
-      const auto key = pack(b);
-      if (lookup_.find(key) == lookup_.end()) {
-        lookup_.emplace(key, static_cast<int>(coords_.size()));
-        coords_.push_back(b);
-      }
-    });
+    Corners corners;
+    touch(s, corners);
   }
 
   // Activates one block (if it is not active yet) and returns its index.
   int activate(const Index<Dim>& b) {
-    const auto [it, fresh] = lookup_.emplace(pack(b), static_cast<int>(coords_.size()));
+    const auto [it, fresh] = lookup_.try_emplace(pack(b), static_cast<int>(coords_.size()));
     if (fresh) coords_.push_back(b);
     return it->second;
   }
@@ -89,21 +92,34 @@ class BlockGrid {
     return b < 0 ? -1 : static_cast<long>(b) * kNodes + local(node);
   }
 
-  // The slots of a stencil's 4^Dim nodes, in Stencil::for_each order (all blocks must be active).
-  void stencil_slots(const Stencil<Dim>& s, std::array<long, kNodes>& out) const {
-    std::array<long, kStencilBlocks> first{};
+  // The corners of a stencil by lookup (-1 for a block that is not active).
+  void stencil_corners(const Stencil<Dim>& s, Corners& corners) const {
     for_stencil_blocks(s, [&](int corner, const Index<Dim>& b) {
       const auto it = lookup_.find(pack(b));
-      first[corner] = it == lookup_.end() ? -1 : static_cast<long>(it->second) * kNodes;
+      corners[corner] = it == lookup_.end() ? -1 : it->second;
     });
+  }
+
+  // The slots of a stencil's 4^Dim nodes, in Stencil::for_each order, from its corners (a node
+  // of a block that is not active gets a negative slot).
+  void slots_from_corners(const Stencil<Dim>& s, const Corners& corners, std::array<long, kNodes>& out) const {
     Index<Dim> lo;
     for (int d = 0; d < Dim; ++d) lo[d] = floor_div(s.base[d]);
     int n = 0;
     s.for_each([&](const Index<Dim>&, const Index<Dim>& node) {
       int corner = 0;
       for (int d = 0; d < Dim; ++d) corner |= (floor_div(node[d]) - lo[d]) << d;
-      out[n++] = first[corner] + local(node);
+      const int b = corners[static_cast<std::size_t>(corner)];
+      out[n++] = b < 0 ? -1 : static_cast<long>(b) * kNodes + local(node);
     });
+  }
+
+  // The slots of a stencil's 4^Dim nodes, in Stencil::for_each order (-1 where the block is not
+  // active).
+  void stencil_slots(const Stencil<Dim>& s, std::array<long, kNodes>& out) const {
+    Corners corners;
+    stencil_corners(s, corners);
+    slots_from_corners(s, corners, out);
   }
 
   // The node index and position of a slot.

@@ -43,9 +43,9 @@ StepLimit Simulation<Dim>::stable_dt() const {
 template <int Dim>
 void Simulation<Dim>::build_grid() {
   grid_.clear();
-  touch_blocks(water_, grid_);
-  touch_blocks(soil_, grid_);
-  if (dd_) dd_->prepare(grid_);
+  touch_blocks(water_, grid_, &water_corners_);
+  touch_blocks(soil_, grid_, &soil_corners_);
+  if (dd_) dd_->prepare(grid_);  // adds blocks after these: the corners stay valid
   water_nodes_.reset(grid_.nodes());
   soil_nodes_.reset(grid_.nodes());
 }
@@ -72,8 +72,8 @@ void Simulation<Dim>::step(double dt) {
   if (dd_) dd_->balance(steps_, water_, soil_);
   build_grid();
   stresses();
-  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_);
-  particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_);
+  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_, &water_corners_);
+  particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_, {}, &soil_corners_);
   if (dd_) dd_->sum_to_owners(soil_nodes_, water_nodes_);
   if (s_.buoyancy) add_buoyancy();
   for (std::size_t i = 0; i < grid_.nodes(); ++i) {
@@ -128,7 +128,7 @@ void Simulation<Dim>::add_buoyancy() {
   std::array<long, BlockGrid<Dim>::kNodes> slots;
   for (std::size_t q = 0; q < soil_.size(); ++q) {
     const Stencil<Dim> st(soil_.x[q], s_.h);
-    grid_.stencil_slots(st, slots);
+    grid_.slots_from_corners(st, soil_corners_[q], slots);
     Vec<Dim> grad = Vec<Dim>::Zero();
     int n = 0;
     st.for_each([&](const Index<Dim>& k, const Index<Dim>&) { grad += p[static_cast<std::size_t>(slots[n++])] * st.gradient(k); });
@@ -149,13 +149,13 @@ void Simulation<Dim>::distribute() {
 template <int Dim>
 void Simulation<Dim>::update_particles(double dt) {
   const Mat<Dim> I = Mat<Dim>::Identity();
-  grid_to_particles(water_, grid_, water_nodes_, grad_v_);
+  grid_to_particles(water_, grid_, water_nodes_, grad_v_, &water_corners_);
   for (std::size_t p = 0; p < water_.size(); ++p) {
     water_.x[p] += dt * water_.v[p];
     water_.J[p] *= 1 + dt * grad_v_[p].trace();
     s_.walls.clamp(water_.x[p]);
   }
-  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_);
+  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &soil_corners_);
   for (std::size_t p = 0; p < soil_.size(); ++p) {
     soil_.x[p] += dt * soil_.v[p];
     const Mat<Dim> trial = (I + dt * grad_v_[p]) * soil_.F[p];

@@ -165,6 +165,7 @@ class Simulation {
   std::vector<Mat<Dim>> water_tau_, soil_tau_, grad_v_;
   std::vector<double> soil_drag_, water_pressure_;
   std::vector<Vec<Dim>> buoyancy_;  // per node slot, N
+  std::vector<typename BlockGrid<Dim>::Corners> water_corners_, soil_corners_;  // this step's blocks per particle
   std::optional<mpi::Comm> comm_;
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;
   SolveStats drag_stats_{};

@@ -15,24 +15,48 @@
 
 namespace suite::mpm2grid {
 
-// Activates the grid blocks the particles' stencils touch.
 template <int Dim>
-void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid) {
+using CornerList = std::vector<typename BlockGrid<Dim>::Corners>;
+
+// Activates the grid blocks the particles' stencils touch; with `corners`, also the indices of
+// each particle's blocks (one entry per particle), which the transfers below then use instead of
+// looking the blocks up again.
+template <int Dim>
+void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, CornerList<Dim>* corners = nullptr) {
   const double h = grid.spacing();
-  for (std::size_t p = 0; p < particles.size(); ++p) grid.touch(Stencil<Dim>(particles.x[p], h));
+  if (corners) corners->resize(particles.size());
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const Stencil<Dim> s(particles.x[p], h);
+    if (corners)
+      grid.touch(s, (*corners)[p]);
+    else
+      grid.touch(s);
+  }
+}
+
+// A particle's node slots: from its corners when given, else by lookup.
+template <int Dim>
+void particle_slots(const BlockGrid<Dim>& grid, const Stencil<Dim>& s, const CornerList<Dim>* corners, std::size_t p,
+                    std::array<long, BlockGrid<Dim>::kNodes>& slots) {
+  if (corners)
+    grid.slots_from_corners(s, (*corners)[p], slots);
+  else
+    grid.stencil_slots(s, slots);
 }
 
 // Adds one species' particles to its node fields (reset to the grid's size by the caller).
 // tau: one Kirchhoff stress per particle (Pa), or empty for none; drag: c_E V per particle
-// (kg/s), or empty; pressure: p per particle (Pa), added as w m p, or empty.
+// (kg/s), or empty; pressure: p per particle (Pa), added as w m p, or empty; corners: from
+// touch_blocks for these particles and this grid, or null.
 template <int Dim>
 void particles_to_grid(const Particles<Dim>& P, const std::vector<Mat<Dim>>& tau, const std::vector<double>& drag,
-                       const BlockGrid<Dim>& grid, NodeFields<Dim>& nodes, const std::vector<double>& pressure = {}) {
+                       const BlockGrid<Dim>& grid, NodeFields<Dim>& nodes, const std::vector<double>& pressure = {},
+                       const CornerList<Dim>* corners = nullptr) {
   const double h = grid.spacing();
   std::array<long, BlockGrid<Dim>::kNodes> slots;
   for (std::size_t p = 0; p < P.size(); ++p) {
     const Stencil<Dim> s(P.x[p], h);
-    grid.stencil_slots(s, slots);
+    particle_slots(grid, s, corners, p, slots);
     const Mat<Dim> stress = tau.empty() ? Mat<Dim>::Zero() : Mat<Dim>(P.volume0[p] * tau[p]);
     const double m = P.mass[p];
     int n = 0;
@@ -53,13 +77,13 @@ void particles_to_grid(const Particles<Dim>& P, const std::vector<Mat<Dim>>& tau
 // Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized).
 template <int Dim>
 void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
-                       std::vector<Mat<Dim>>& grad_v) {
+                       std::vector<Mat<Dim>>& grad_v, const CornerList<Dim>* corners = nullptr) {
   const double h = grid.spacing(), inverse_d = apic_inverse_d(h);
   grad_v.resize(P.size());
   std::array<long, BlockGrid<Dim>::kNodes> slots;
   for (std::size_t p = 0; p < P.size(); ++p) {
     const Stencil<Dim> s(P.x[p], h);
-    grid.stencil_slots(s, slots);
+    particle_slots(grid, s, corners, p, slots);
     Vec<Dim> v = Vec<Dim>::Zero();
     Mat<Dim> B = Mat<Dim>::Zero(), G = Mat<Dim>::Zero();
     int n = 0;
