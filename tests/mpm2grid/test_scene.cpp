@@ -1,6 +1,6 @@
 // Scene seeding (scenes/scene.hpp): a soil region with `saturated: true` starts with its pores
-// full of water, one water particle per soil particle (at the water's own density: the water
-// does not see the solid's volume in this model), so that the soil's saturation seen from the
+// full of water, one water particle per soil particle (at the water's own density: without
+// mixture: true the water does not see the solid's volume), so that the soil's saturation seen from the
 // water grid is 1 inside the region and its cohesion c0 (1 - S) is 0.
 #include <gtest/gtest.h>
 
@@ -15,9 +15,10 @@ namespace suite::mpm2grid {
 namespace {
 
 // Two soil blocks side by side on the floor, the left one saturated, the right one dry, 10 cm
-// apart (more than the 2h reach of a cubic B-spline stencil on each side).
-Scene<2> two_blocks() {
-  const auto cfg = config::Config::from_string(R"(
+// apart (more than the 2h reach of a cubic B-spline stencil on each side); `mixture` adds
+// mixture: true and a surcharge of 4 kPa on the left block.
+Scene<2> two_blocks(bool mixture = false) {
+  std::string yaml = R"(
 dimension: 2
 grid: {spacing: 10 mm, particles_per_cell: 2}
 domain: {lo: [0, 0], hi: [0.8, 0.4]}
@@ -34,9 +35,12 @@ soil:
       saturated: true
     - box: {lo: [0.3, 0], hi: [0.5, 0.2]}
 time: {end: 1 s}
-)",
-                                               "two_blocks.yaml");
-  return read_scene<2>(cfg);
+)";
+  if (mixture) {
+    yaml += "mixture: true\n";
+    yaml.replace(yaml.find("saturated: true"), 15, "saturated: true\n      surcharge: 4 kPa");
+  }
+  return read_scene<2>(config::Config::from_string(yaml, "two_blocks.yaml"));
 }
 
 TEST(SceneSeeding, ASaturatedSoilRegionGetsOnePoreWaterParticlePerSoilParticle) {
@@ -62,6 +66,30 @@ TEST(SceneSeeding, ASaturatedSoilRegionGetsOnePoreWaterParticlePerSoilParticle) 
     ++w;
   }
   EXPECT_EQ(w, water.size());
+}
+
+// In the mixture the pore water fills the pores only (mass n rho_w V, volume n V), and the
+// surcharge loads the region's top lattice row only, s * 4 kPa per particle (N/m in 2D), down.
+TEST(SceneSeeding, TheMixtureSeedsPoreWaterInThePoresAndASurchargeLoadsTheTopRow) {
+  const auto scene = two_blocks(true);
+  ASSERT_TRUE(scene.simulation.mixture);
+  Simulation<2> sim(scene.simulation);
+  seed_particles(scene, sim);
+  const auto& soil = sim.soil();
+  const auto& water = sim.water();
+  const double s = 0.005, volume = s * s;
+  ASSERT_EQ(water.size(), 1600u);
+  for (std::size_t w = 0; w < water.size(); ++w) {
+    EXPECT_DOUBLE_EQ(water.mass[w], 0.4 * 1000.0 * volume);
+    EXPECT_DOUBLE_EQ(water.volume0[w], 0.4 * volume);
+  }
+  int loaded = 0;
+  for (std::size_t p = 0; p < soil.size(); ++p) {
+    const bool top = soil.x[p][0] < 0.2 && soil.x[p][1] > 0.2 - s;
+    EXPECT_EQ(soil.load[p], top ? Vec<2>(0, -4000 * s) : Vec<2>::Zero()) << soil.x[p].transpose();
+    loaded += top;
+  }
+  EXPECT_EQ(loaded, 40);  // 0.2 m at 5 mm
 }
 
 TEST(SceneSeeding, PoreWaterSaturatesTheSoilAndRemovesItsCohesion) {

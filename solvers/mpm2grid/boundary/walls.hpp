@@ -40,6 +40,17 @@ struct Walls {
     }
   }
 
+  // The part of a node's B-spline weight that lies inside the box, in (0, 1]: prod over the sides
+  // of integral N over the inside. A material that fills the box up to a wall gives the nodes on
+  // and next to the wall only this part of an interior node's volume (1/2 on the wall, 1/24 one
+  // cell beyond it); dividing a node's volume fraction by it removes that wall layer.
+  double inside_fraction(const Vec<Dim>& node, double h) const {
+    double f = 1;
+    for (int d = 0; d < Dim; ++d)
+      f *= cubic_bspline_integral((node[d] - lo[d]) / h) * cubic_bspline_integral((hi[d] - node[d]) / h);
+    return f;
+  }
+
   void apply(const BlockGrid<Dim>& grid, NodeFields<Dim>& nodes) const {
     const double tol = 1e-9 * grid.spacing();
     for (long i = 0; i < static_cast<long>(nodes.mass.size()); ++i) {

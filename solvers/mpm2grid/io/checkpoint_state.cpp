@@ -36,6 +36,7 @@ void write_species(checkpoint::Writer& w, const std::string& s, const Particles<
   w.write<double>(s + "/J", P.J);
   w.write<double>(s + "/log_jp", P.log_jp);
   w.write<double>(s + "/saturation", P.saturation);
+  w.write<double>(s + "/load", flat(P.load));
 }
 
 template <int Dim>
@@ -49,9 +50,10 @@ void read_species(checkpoint::Reader& r, const std::string& s, Particles<Dim>& P
   P.J = r.read<double>(s + "/J");
   P.log_jp = r.read<double>(s + "/log_jp");
   P.saturation = r.read<double>(s + "/saturation");
+  unflatten(r.read<double>(s + "/load"), P.load, s + "/load");
   const std::size_t n = P.x.size();
   for (std::size_t m : {P.v.size(), P.C.size(), P.mass.size(), P.volume0.size(), P.F.size(), P.J.size(),
-                        P.log_jp.size(), P.saturation.size()})
+                        P.log_jp.size(), P.saturation.size(), P.load.size()})
     if (m != n) throw LibraryError("checkpoint species '" + s + "' has arrays of different lengths");
 }
 

@@ -67,7 +67,8 @@ double water_front(const Simulation<Dim>& sim, double half_spacing) {
 }
 
 constexpr const char* kSolver = "mpm2grid";
-constexpr long long kCheckpointFormat = 3;  // 2: inlet state, outlet record, initial soil volume; 3: block owners
+constexpr long long kCheckpointFormat = 4;  // 2: inlet state, outlet record, initial soil volume; 3: block owners;
+                                            // 4: particle loads (surcharges)
 
 template <int Dim>
 class MpmRun {
@@ -118,6 +119,10 @@ class MpmRun {
       const auto& soil = scene_.simulation.soil.material;
       log_.info("soil: dry cohesion c0 = {:.6g} Pa, friction angle {:.4g} deg", soil.cohesion,
                 soil.friction_angle * 180 / std::numbers::pi);
+      const auto& s = scene_.simulation;
+      if (s.buoyancy)
+        log_.info("pore pressure: {}", s.mixture ? "mixture (the pore water is compressed with the skeleton, Biot)"
+                                                 : "buoyancy only (the water does not see the solid's volume)");
     }
     if (const auto* inlet = sim_.inlet())
       log_.info("inlet on x_low: {} particle rows ({} m of the {} m asked for), q(0) = {} m^2/s per metre, v(0) = {} "

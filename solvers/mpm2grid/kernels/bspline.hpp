@@ -34,6 +34,20 @@ inline double cubic_bspline_derivative(double r) {
   return 0;
 }
 
+// The integral of N from -infinity to r: 0 below -2, 1/2 at 0, 1 above 2. A node at distance
+// r h inside a wall has the fraction bspline_integral(r) of its weight's support inside.
+inline double cubic_bspline_integral(double r) {
+  const double a = std::abs(r);
+  double half;  // the integral of N from 0 to |r|
+  if (a < 1)
+    half = a * a * a * a / 8 - a * a * a / 3 + 2 * a / 3;
+  else if (a < 2)
+    half = 11.0 / 24 + (1 - (2 - a) * (2 - a) * (2 - a) * (2 - a)) / 24;
+  else
+    half = 0.5;
+  return r < 0 ? 0.5 - half : 0.5 + half;
+}
+
 // APIC's inertia-like tensor for cubic B-splines is D = h^2 / 3 I, so D^-1 = 3 / h^2.
 inline double apic_inverse_d(double h) { return 3.0 / (h * h); }
 

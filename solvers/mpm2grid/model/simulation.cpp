@@ -35,7 +35,14 @@ StepLimit Simulation<Dim>::stable_dt() const {
     if (dt < best.dt) best = {dt, why};
   };
   if (vmax > 0) consider(s_.cfl * h / vmax, "cfl (velocity)");
-  if (water) consider(s_.cfl * h / s_.water.eos.sound_speed(s_.water.density), "water wave speed");
+  if (water) {
+    double c = s_.water.eos.sound_speed(s_.water.density);
+    if (s_.mixture && soil) {  // the wave in the pores also moves the skeleton (see the header)
+      const double n = s_.soil.porosity;
+      c *= std::sqrt(1 + s_.water.density * (1 - n) * (1 - n) / (n * s_.soil.density));
+    }
+    consider(s_.cfl * h / c, "water wave speed");
+  }
   if (soil) consider(s_.cfl * h / s_.soil.material.p_wave_speed(s_.soil.density), "soil elastic wave speed");
   return best;
 }
@@ -74,7 +81,9 @@ void Simulation<Dim>::step(double dt) {
   stresses();
   particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_, &water_corners_);
   particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_, {}, &soil_corners_);
+  if (s_.loads) add_loads();
   if (dd_) dd_->sum_to_owners(soil_nodes_, water_nodes_);
+  if (s_.mixture) solid_fractions();
   if (s_.buoyancy) add_buoyancy();
   for (std::size_t i = 0; i < grid_.nodes(); ++i) {
     water_nodes_.force[i] += water_nodes_.mass[i] * s_.gravity;
@@ -141,6 +150,56 @@ void Simulation<Dim>::add_buoyancy() {
   for (std::size_t i = 0; i < grid_.nodes(); ++i) soil_nodes_.force[i] += buoyancy_[i];
 }
 
+// The soil particles' loads on the soil grid, scaled by the ramp at the step's start.
+template <int Dim>
+void Simulation<Dim>::add_loads() {
+  const double ramp = s_.load_ramp > 0 ? std::min(1.0, time_ / s_.load_ramp) : 1.0;
+  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  for (std::size_t q = 0; q < soil_.size(); ++q) {
+    if (soil_.load[q].isZero(0.0)) continue;
+    const Stencil<Dim> st(soil_.x[q], s_.h);
+    grid_.slots_from_corners(st, soil_corners_[q], slots);
+    int n = 0;
+    st.for_each([&](const Index<Dim>& k, const Index<Dim>&) {
+      soil_nodes_.force[static_cast<std::size_t>(slots[n++])] += st.weight(k) * ramp * soil_.load[q];
+    });
+  }
+}
+
+// The mixture's soil volume fraction per node (see the header), on owned and ghost nodes.
+template <int Dim>
+void Simulation<Dim>::solid_fractions() {
+  constexpr double kMost = 0.95;  // keeps 1 - phi_s away from zero where B-splines overshoot
+  const double per_kg = (1 - s_.soil.porosity) / (s_.soil.density * std::pow(s_.h, Dim));
+  solid_fraction_.assign(grid_.nodes(), 0.0);
+  for (std::size_t i = 0; i < grid_.nodes(); ++i) {
+    if (!(soil_nodes_.mass[i] > 0)) continue;
+    const double inside = s_.walls.inside_fraction(grid_.position(static_cast<long>(i)), s_.h);
+    if (inside > 0) solid_fraction_[i] = std::min(kMost, per_kg * soil_nodes_.mass[i] / inside);
+  }
+  if (dd_) dd_->copy_to_ghosts(solid_fraction_);
+}
+
+// The mixture's J update of the water (see the header), from the grid velocities of both
+// species at the particles' positions at the step's start.
+template <int Dim>
+void Simulation<Dim>::mixture_volume_rates(double dt) {
+  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  for (std::size_t p = 0; p < water_.size(); ++p) {
+    const Stencil<Dim> st(water_.x[p], s_.h);
+    grid_.slots_from_corners(st, water_corners_[p], slots);
+    double phi = 0, div = 0;
+    int n = 0;
+    st.for_each([&](const Index<Dim>& k, const Index<Dim>&) {
+      const auto i = static_cast<std::size_t>(slots[n++]);
+      const double f = solid_fraction_[i];
+      phi += st.weight(k) * f;
+      div += (f * soil_nodes_.velocity[i] + (1 - f) * water_nodes_.velocity[i]).dot(st.gradient(k));
+    });
+    water_.J[p] *= 1 + dt * div / (1 - phi);
+  }
+}
+
 template <int Dim>
 void Simulation<Dim>::distribute() {
   if (dd_) dd_->balance(steps_, water_, soil_, true);
@@ -150,9 +209,10 @@ template <int Dim>
 void Simulation<Dim>::update_particles(double dt) {
   const Mat<Dim> I = Mat<Dim>::Identity();
   grid_to_particles(water_, grid_, water_nodes_, grad_v_, &water_corners_);
+  if (s_.mixture) mixture_volume_rates(dt);
   for (std::size_t p = 0; p < water_.size(); ++p) {
     water_.x[p] += dt * water_.v[p];
-    water_.J[p] *= 1 + dt * grad_v_[p].trace();
+    if (!s_.mixture) water_.J[p] *= 1 + dt * grad_v_[p].trace();
     s_.walls.clamp(water_.x[p]);
   }
   grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &soil_corners_);

@@ -28,6 +28,19 @@
 // pressure already balances its weight; the soil's weight less its buoyancy rests on the walls
 // through the skeleton. The exchange between the species that conserves their total momentum is
 // the drag.
+// Mixture (a scene's `mixture: true`; off by default): the pore water's volume balance counts the
+// soil's, as in Biot's theory with incompressible grains: a water particle's J changes at the
+// rate div(phi_s v_s + (1 - phi_s) v_w) / (1 - phi_s) instead of div v_w, phi_s the soil's
+// volume fraction where the particle is (from the soil grid's nodes, phi_s,i = (1 - n) m_s,i /
+// (rho_s h^Dim) divided by the part of the node's weight inside the walls). Compressing the
+// skeleton then compresses its pore water: an undrained load goes to the pore pressure, which
+// drains through the drag (Terzaghi's consolidation). Pore water is seeded at its partial
+// volume n V and mass n rho_w V, so its force is -n grad p and, with the buoyancy, the mixture
+// feels -grad p. Where there is no soil, phi_s = 0 and the water is the plain weakly
+// compressible water. The water wave then also moves the skeleton, and the water wave speed the
+// time step uses is c_w sqrt(1 + rho_w (1 - n)^2 / (n rho_s)).
+// Loads: soil particles may carry an external force (a surcharge on a region's upper surface),
+// applied in full from t = load_ramp on, growing linearly from zero before.
 #include <memory>
 #include <optional>
 #include <string>
@@ -78,6 +91,9 @@ struct SimulationSettings {
   std::optional<InletSettings<Dim>> inlet;  // water inlet on the x_low side, if any
   DecompositionSettings decomposition;      // load checks and rebalancing over several ranks
   bool buoyancy = true;                     // the water's pressure acts on the soil skeleton
+  bool mixture = false;                     // the pore water's volume balance counts the soil's
+  bool loads = false;                       // some soil particles carry loads
+  double load_ramp = 0;                     // s over which the loads grow to full (0: at once)
 };
 
 // What limits the time step, for the log.
@@ -157,6 +173,9 @@ class Simulation {
   void remove_outflow();
   void solve_grid(double dt);
   void add_buoyancy();
+  void add_loads();
+  void solid_fractions();
+  void mixture_volume_rates(double dt);
 
   SimulationSettings<Dim> s_;
   Particles<Dim> water_, soil_;
@@ -164,6 +183,7 @@ class Simulation {
   NodeFields<Dim> water_nodes_, soil_nodes_;
   std::vector<Mat<Dim>> water_tau_, soil_tau_, grad_v_;
   std::vector<double> soil_drag_, water_pressure_;
+  std::vector<double> solid_fraction_;  // mixture: phi_s per node slot
   std::vector<Vec<Dim>> buoyancy_;  // per node slot, N
   std::vector<typename BlockGrid<Dim>::Corners> water_corners_, soil_corners_;  // this step's blocks per particle
   std::optional<mpi::Comm> comm_;

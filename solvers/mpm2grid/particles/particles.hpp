@@ -20,6 +20,8 @@ struct Particles {
   std::vector<double> J;             // water: volume ratio J = V / V^0 (1 for soil)
   std::vector<double> log_jp;        // soil: Drucker-Prager volume correction, log of a volume ratio
   std::vector<double> saturation;    // soil: water fraction seen from the water grid, [0, 1]
+  std::vector<Vec<Dim>> load;        // soil: external force at full load, N (a surcharge on the
+                                     // particles of a region's upper surface; zero elsewhere)
 
   std::size_t size() const { return x.size(); }
 
@@ -33,6 +35,7 @@ struct Particles {
     J.push_back(1.0);
     log_jp.push_back(0.0);
     saturation.push_back(0.0);
+    load.push_back(Vec<Dim>::Zero());
   }
 
   // Keeps the particles for which keep(p) is true, in order.
@@ -43,22 +46,23 @@ struct Particles {
       if (!keep(p)) continue;
       if (n != p) {
         x[n] = x[p], v[n] = v[p], C[n] = C[p], mass[n] = mass[p], volume0[n] = volume0[p];
-        F[n] = F[p], J[n] = J[p], log_jp[n] = log_jp[p], saturation[n] = saturation[p];
+        F[n] = F[p], J[n] = J[p], log_jp[n] = log_jp[p], saturation[n] = saturation[p], load[n] = load[p];
       }
       ++n;
     }
     x.resize(n), v.resize(n), C.resize(n), mass.resize(n), volume0.resize(n);
-    F.resize(n), J.resize(n), log_jp.resize(n), saturation.resize(n);
+    F.resize(n), J.resize(n), log_jp.resize(n), saturation.resize(n), load.resize(n);
   }
 
   // A particle's whole state as kPacked doubles (for moving it to another rank), and back.
-  static constexpr int kPacked = 2 * Dim + 2 * Dim * Dim + 5;
+  static constexpr int kPacked = 3 * Dim + 2 * Dim * Dim + 5;
   void pack(std::size_t p, std::vector<double>& out) const {
     const auto put = [&](const double* a, int n) { out.insert(out.end(), a, a + n); };
     put(x[p].data(), Dim), put(v[p].data(), Dim), put(C[p].data(), Dim * Dim);
     out.insert(out.end(), {mass[p], volume0[p]});
     put(F[p].data(), Dim * Dim);
     out.insert(out.end(), {J[p], log_jp[p], saturation[p]});
+    put(load[p].data(), Dim);
   }
   // Appends the particle packed at `in` (kPacked doubles).
   void add_packed(const double* in) {
@@ -75,6 +79,10 @@ struct Particles {
     take(Fp, Dim * Dim);
     F.push_back(Fp);
     J.push_back(in[0]), log_jp.push_back(in[1]), saturation.push_back(in[2]);
+    in += 3;
+    Vec<Dim> lp;
+    take(lp, Dim);
+    load.push_back(lp);
   }
 
   double total_mass() const {

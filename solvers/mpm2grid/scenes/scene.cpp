@@ -31,6 +31,7 @@ Region read_region(const config::Section& s, int dim, double floor, bool soil, b
   // Read only when given, so that the default does not enter the region's section (whose value
   // the region errors quote on one line).
   if (soil && s.has("saturated")) r.saturated = s.get<bool>("saturated");
+  if (soil && s.has("surcharge")) r.surcharge = s.quantity("surcharge", "Pa", Range::at_least(0));
   if (r.saturated && !water)
     s.reject("saturated", "a saturated soil region needs the water: section (density, bulk_modulus) for its "
                           "pore water; add it, or drop saturated: true");
@@ -173,7 +174,11 @@ Scene<Dim> read_scene(const config::Config& cfg) {
     sim.soil.porosity = s->number("porosity", 0.4, Range{0.0, 1.0, true, true});
     sim.soil.conductivity = s->quantity("conductivity", "m/s", 1e-4, Range::positive());
     sc.soil_regions = read_regions(*s, Dim, lo[1], true, root.has("water"));
-    for (const auto& r : sc.soil_regions) check_inside<Dim>(*s, r, sim.walls.lo, sim.walls.hi, "soil");
+    for (const auto& r : sc.soil_regions) {
+      check_inside<Dim>(*s, r, sim.walls.lo, sim.walls.hi, "soil");
+      sim.loads = sim.loads || r.surcharge > 0;
+    }
+    sim.load_ramp = s->quantity("surcharge_ramp", "s", 0.0, Range::at_least(0));
   }
   if (const auto inlet = root.optional_section("inlet")) {
     if (!root.has("water")) root.reject("inlet", "an inlet needs the water: section (density, bulk_modulus, regions)");
@@ -184,6 +189,10 @@ Scene<Dim> read_scene(const config::Config& cfg) {
 
   // Buoyancy needs both species; a scene with one does not pay for it.
   sim.buoyancy = root.get<bool>("buoyancy", true) && root.has("water") && root.has("soil");
+  sim.mixture = root.get<bool>("mixture", false);
+  if (sim.mixture && !sim.buoyancy && root.has("water") && root.has("soil"))
+    root.reject("mixture", "the mixture's pore pressure acts on the skeleton through the buoyancy; drop buoyancy: false "
+                           "or mixture: true");
   const auto drag = root.choice("drag", {"lumped", "consistent", "explicit"}, "lumped");
   sim.drag = drag == "lumped" ? DragScheme::lumped : drag == "consistent" ? DragScheme::consistent
                                                                           : DragScheme::explicit_euler;
@@ -211,8 +220,9 @@ std::vector<double> Scene<Dim>::fingerprint() const {
                         time.end, time.series, time.output, s.water.density, s.water.eos.bulk_modulus,
                         s.water.eos.gamma, s.soil.density, s.soil.porosity, s.soil.conductivity,
                         double(static_cast<int>(s.drag)), double(s.decomposition.check_every),
-                        s.decomposition.imbalance, double(s.buoyancy), hydrostatic_surface.value_or(-1e300)};
-  for (const auto& r : soil_regions) f.push_back(double(r.saturated));
+                        s.decomposition.imbalance, double(s.buoyancy), hydrostatic_surface.value_or(-1e300),
+                        double(s.mixture), s.load_ramp};
+  for (const auto& r : soil_regions) f.insert(f.end(), {double(r.saturated), r.surcharge});
   for (int d = 0; d < Dim; ++d) f.insert(f.end(), {s.walls.lo[d], s.walls.hi[d]});
   if (s.inlet) f.insert(f.end(), {s.inlet->height, s.inlet->discharge(0), s.inlet->discharge.cumulative(time.end)});
   return f;
@@ -239,17 +249,29 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim) {
       if (r.saturated && r.template contains<Dim>(x)) return true;
     return false;
   };
-  // A water particle filling its lattice cell, at the hydrostatic pressure under
-  // hydrostatic_surface if the scene gives one (J from p, volume0 = volume / J), else at rest.
-  auto add_water = [&](const Vec<Dim>& x) {
+  // The surcharge on a soil particle: that of each region whose upper surface it is on.
+  auto load = [&](const Vec<Dim>& x) {
+    Vec<Dim> above = x, f = Vec<Dim>::Zero();
+    above[1] += spacing;
+    for (const auto& r : sc.soil_regions)
+      if (r.surcharge > 0 && r.template contains<Dim>(x) && !r.template contains<Dim>(above))
+        f[1] -= r.surcharge * std::pow(spacing, Dim - 1);
+    return f;
+  };
+  // A water particle filling the part `fraction` of its lattice cell, at the hydrostatic pressure
+  // under hydrostatic_surface if the scene gives one (J from p, volume0 = fraction volume / J),
+  // else at rest.
+  auto add_water = [&](const Vec<Dim>& x, double fraction) {
     double J = 1;
     if (sc.hydrostatic_surface) {
       const double p = s.water.density * std::abs(s.gravity[1]) * std::max(0.0, *sc.hydrostatic_surface - x[1]);
       J = std::pow(1 + p / s.water.eos.bulk_modulus, -1 / s.water.eos.gamma);
     }
-    sim.water().add(x, Vec<Dim>::Zero(), s.water.density * volume, volume / J);
+    sim.water().add(x, Vec<Dim>::Zero(), s.water.density * fraction * volume, fraction * volume / J);
     sim.water().J.back() = J;
   };
+  // Pore water: a whole water particle, or in the mixture the pores' part n.
+  const double pores = s.mixture ? s.soil.porosity : 1.0;
   for (long long n = 0; n < total; ++n) {
     long long r = n;
     Vec<Dim> x;
@@ -259,9 +281,10 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim) {
     }
     if (inside(sc.soil_regions, x)) {
       sim.soil().add(x, Vec<Dim>::Zero(), s.soil.density * volume, volume);
-      if (saturated(x)) add_water(x);
+      if (s.loads) sim.soil().load.back() = load(x);
+      if (saturated(x)) add_water(x, pores);
     } else if (inside(sc.water_regions, x)) {
-      add_water(x);
+      add_water(x, 1.0);
     }
   }
 }

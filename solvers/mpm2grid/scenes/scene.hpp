@@ -34,11 +34,19 @@
 // as V/H. Water regions leave out the points inside soil regions.
 // A soil region may say `saturated: true` (default false): its pores start full of water. Every
 // soil particle seeded there gets a water particle at the same point, as a water region would
-// seed it (mass rho_w V, volume V, at the hydrostatic J under hydrostatic_surface if given). In
-// this model the water does not see the solid's volume (model/simulation.hpp, buoyancy), so the
+// seed it (mass rho_w V, volume V, at the hydrostatic J under hydrostatic_surface if given). Without
+// mixture: true the water does not see the solid's volume (model/simulation.hpp, buoyancy), so the
 // pore water is water at its own density: its pressure then continues that of free water above
 // the soil, and the soil's saturation is S = min(phi_w / n, 1) = 1 there (c = 0). Needs the
 // water: section (density, bulk_modulus); the scene's water regions stay as they are.
+// Mixture: `mixture: true` (default false) makes the pore water's volume balance count the soil's
+// (model/simulation.hpp): compressing the skeleton compresses its pore water (Terzaghi's
+// consolidation); a saturated region's pore water is then seeded at its partial volume n V and
+// mass n rho_w V. Needs buoyancy.
+// Surcharge: a soil region's `surcharge: 20 kPa` (default 0) presses on its upper surface: each
+// of its particles with no particle of the region one lattice spacing above carries the load
+// surcharge s^(Dim-1) down (s the lattice spacing, Pa per horizontal area). All loads grow
+// linearly from zero to full over the soil's `surcharge_ramp` (default 0 s: at once).
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,6 +63,7 @@ struct Region {
   double toe = 0, height = 0, crest_width = 0, upstream_slope = 1, downstream_slope = 1;  // trapezoid
   double floor = 0;  // trapezoid: the y of its base (the domain's floor)
   bool saturated = false;  // soil regions: seed pore water with the soil (see above)
+  double surcharge = 0;    // soil regions: Pa on the upper surface (see above)
 
   // True when x lies in the region ([lo, hi) per axis; the trapezoid's cross-section in x-y, half
   // open at its right and top) grown outwards by `margin` (m) along the axes: the trapezoid's
