@@ -40,7 +40,7 @@ struct Walls {
     }
   }
 
-  // The part of a node's B-spline weight that lies inside the box, in (0, 1]: prod over the sides
+  // The part of a node's B-spline weight that lies inside the box, in [0, 1]: prod over the sides
   // of integral N over the inside. A material that fills the box up to a wall gives the nodes on
   // and next to the wall only this part of an interior node's volume (1/2 on the wall, 1/24 one
   // cell beyond it); dividing a node's volume fraction by it removes that wall layer.

@@ -35,7 +35,7 @@ inline double cubic_bspline_derivative(double r) {
 }
 
 // The integral of N from -infinity to r: 0 below -2, 1/2 at 0, 1 above 2. A node at distance
-// r h inside a wall has the fraction bspline_integral(r) of its weight's support inside.
+// r h inside a wall has the fraction cubic_bspline_integral(r) of its weight's support inside.
 inline double cubic_bspline_integral(double r) {
   const double a = std::abs(r);
   double half;  // the integral of N from 0 to |r|
