@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -69,7 +70,11 @@ void Simulation<Dim>::stresses() {
   soil_drag_.resize(soil_.size());
   const double c_e = s_.soil.drag_coefficient(s_.water.density);
   for (std::size_t p = 0; p < soil_.size(); ++p) {
-    soil_tau_[p] = s_.soil.material.template kirchhoff<Dim>(soil_.F[p]);
+    // The stress is a function of F_E alone: a known one for a bit-for-bit equal F_E is the
+    // same value, without another SVD. (Particles removed or moved since only miss it.)
+    const bool known = p < known_stress_.size() && known_stress_[p].known &&
+                       std::memcmp(known_stress_[p].F.data(), soil_.F[p].data(), sizeof(Mat<Dim>)) == 0;
+    soil_tau_[p] = known ? known_stress_[p].tau : s_.soil.material.template kirchhoff<Dim>(soil_.F[p]);
     soil_drag_[p] = c_e * soil_.volume0[p] * soil_.F[p].determinant();
   }
 }
@@ -208,12 +213,15 @@ void Simulation<Dim>::update_particles(double dt) {
     s_.walls.clamp(water_.x[p]);
   }
   grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &soil_stencils_);
+  known_stress_.resize(soil_.size());
   for (std::size_t p = 0; p < soil_.size(); ++p) {
     soil_.x[p] += dt * soil_.v[p];
     const Mat<Dim> trial = (I + dt * grad_v_[p]) * soil_.F[p];
     const auto r = s_.soil.material.template project<Dim>(trial, soil_.log_jp[p], soil_.saturation[p]);
     soil_.F[p] = r.F;
     soil_.log_jp[p] = r.log_jp;
+    known_stress_[p].known = r.has_stress;
+    if (r.has_stress) known_stress_[p].F = r.F, known_stress_[p].tau = r.stress;
     s_.walls.clamp(soil_.x[p]);
   }
 }
@@ -224,11 +232,16 @@ void Simulation<Dim>::update_saturation() {
   const double h = s_.h, node_volume = std::pow(h, Dim);
   const double full = s_.water.density * node_volume * s_.soil.porosity;
   // At the particles' new positions: their stencils may reach blocks that are not active (-1).
+  // Neighbouring particles mostly lie in the same blocks: those are looked up once.
   std::array<long, BlockGrid<Dim>::kNodes> slots;
   std::array<double, BlockGrid<Dim>::kNodes> weights;
+  typename BlockGrid<Dim>::Corners corners{};
+  Index<Dim> previous{};
   for (std::size_t p = 0; p < soil_.size(); ++p) {
     const Stencil<Dim> st(soil_.x[p], h);
-    grid_.stencil_slots(st, slots);
+    if (p == 0 || !BlockGrid<Dim>::same_blocks(st.base, previous)) grid_.stencil_corners(st, corners);
+    previous = st.base;
+    grid_.slots_from_corners(st, corners, slots);
     st.weights(weights);
     double phi = 0;
     for (int n = 0; n < st.kNodes; ++n)

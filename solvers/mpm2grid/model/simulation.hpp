@@ -186,6 +186,13 @@ class Simulation {
   std::vector<double> soil_drag_, water_pressure_;
   std::vector<double> solid_fraction_;  // mixture: phi_s per node slot
   std::vector<Vec<Dim>> buoyancy_;  // per node slot, N
+  // Per soil particle, a Kirchhoff stress the return mapping had at hand and the F_E it belongs
+  // to: the next stresses() takes it where the particle's F_E is still exactly that one.
+  struct KnownStress {
+    bool known = false;
+    Mat<Dim> F, tau;
+  };
+  std::vector<KnownStress> known_stress_;
   ParticleStencils<Dim> water_stencils_, soil_stencils_;  // this step's stencils and blocks per particle
   std::optional<mpi::Comm> comm_;
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;

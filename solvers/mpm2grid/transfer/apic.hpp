@@ -38,9 +38,13 @@ void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, Particl
     stencils->corners.resize(particles.size());
   }
   typename BlockGrid<Dim>::Corners corners{};
+  Index<Dim> previous{};
   for (std::size_t p = 0; p < particles.size(); ++p) {
     const Stencil<Dim> s(particles.x[p], h);
-    grid.touch(s, corners);
+    // Neighbouring particles mostly lie in the same blocks as the one before them: then those
+    // blocks are active and their indices known, without looking them up.
+    if (p == 0 || !BlockGrid<Dim>::same_blocks(s.base, previous)) grid.touch(s, corners);
+    previous = s.base;
     if (!stencils) continue;
     stencils->corners[p] = corners;
     stencils->stencil.push_back(s);
