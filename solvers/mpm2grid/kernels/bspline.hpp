@@ -58,6 +58,7 @@ struct Stencil {
   std::array<std::array<double, 4>, Dim> w{};   // per axis
   std::array<std::array<double, 4>, Dim> dw{};  // per axis, d/dx in 1/m
 
+  Stencil() = default;
   // x in metres relative to the grid origin, h the node spacing.
   Stencil(const Vec<Dim>& x, double h) {
     for (int d = 0; d < Dim; ++d) {

@@ -232,13 +232,15 @@ void Simulation<Dim>::update_saturation() {
   const double h = s_.h, node_volume = std::pow(h, Dim);
   const double full = s_.water.density * node_volume * s_.soil.porosity;
   // At the particles' new positions: their stencils may reach blocks that are not active (-1).
-  // Neighbouring particles mostly lie in the same blocks: those are looked up once.
+  // Neighbouring particles mostly lie in the same blocks: those are looked up once. The
+  // stencils are kept for the next step's touch_blocks (this step's are used up).
   std::array<long, BlockGrid<Dim>::kNodes> slots;
   std::array<double, BlockGrid<Dim>::kNodes> weights;
   typename BlockGrid<Dim>::Corners corners{};
   Index<Dim> previous{};
+  soil_stencils_.resize(soil_.size());
   for (std::size_t p = 0; p < soil_.size(); ++p) {
-    const Stencil<Dim> st(soil_.x[p], h);
+    const Stencil<Dim>& st = soil_stencils_.update(p, soil_.x[p], h);
     if (p == 0 || !BlockGrid<Dim>::same_blocks(st.base, previous)) grid_.stencil_corners(st, corners);
     previous = st.base;
     grid_.slots_from_corners(st, corners, slots);

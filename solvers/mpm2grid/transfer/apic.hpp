@@ -9,6 +9,7 @@
 // P2G conserves mass, linear and angular momentum exactly (the weights are a partition of unity
 // and reproduce linear functions); G2P then P2G loses no angular momentum either.
 #include <array>
+#include <cstring>
 #include <vector>
 
 #include "solvers/mpm2grid/grid/block_grid.hpp"
@@ -21,11 +22,33 @@ using CornerList = std::vector<typename BlockGrid<Dim>::Corners>;
 
 // Each particle's stencil (B-spline weights) and the indices of the grid blocks it touches
 // (Corners), found once a step by touch_blocks and used by every transfer of that step instead
-// of evaluating the B-splines and looking the blocks up again.
+// of evaluating the B-splines and looking the blocks up again. A stencil depends on the
+// particle's position alone: one kept for the position a particle still has is not evaluated
+// again (the saturation update keeps those of the soil's new positions for the next step).
 template <int Dim>
 struct ParticleStencils {
   std::vector<Stencil<Dim>> stencil;
   CornerList<Dim> corners;
+  std::vector<Vec<Dim>> position;  // the position stencil[p] is of, where kept[p]
+  std::vector<char> kept;
+
+  // Room for n particles (the kept stencils of the first ones stay).
+  void resize(std::size_t n) {
+    stencil.resize(n);
+    corners.resize(n);
+    position.resize(n);
+    kept.resize(n, 0);
+  }
+  // Particle p's stencil at x: the one kept for p when it is of x bit for bit, else a new one,
+  // kept.
+  const Stencil<Dim>& update(std::size_t p, const Vec<Dim>& x, double h) {
+    if (!kept[p] || std::memcmp(position[p].data(), x.data(), sizeof(Vec<Dim>)) != 0) {
+      stencil[p] = Stencil<Dim>(x, h);
+      position[p] = x;
+      kept[p] = 1;
+    }
+    return stencil[p];
+  }
 };
 
 // Activates the grid blocks the particles' stencils touch; with `stencils`, also keeps each
@@ -33,21 +56,16 @@ struct ParticleStencils {
 template <int Dim>
 void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, ParticleStencils<Dim>* stencils = nullptr) {
   const double h = grid.spacing();
-  if (stencils) {
-    stencils->stencil.clear();
-    stencils->corners.resize(particles.size());
-  }
+  if (stencils) stencils->resize(particles.size());
   typename BlockGrid<Dim>::Corners corners{};
   Index<Dim> previous{};
   for (std::size_t p = 0; p < particles.size(); ++p) {
-    const Stencil<Dim> s(particles.x[p], h);
+    const Stencil<Dim> s = stencils ? stencils->update(p, particles.x[p], h) : Stencil<Dim>(particles.x[p], h);
     // Neighbouring particles mostly lie in the same blocks as the one before them: then those
     // blocks are active and their indices known, without looking them up.
     if (p == 0 || !BlockGrid<Dim>::same_blocks(s.base, previous)) grid.touch(s, corners);
     previous = s.base;
-    if (!stencils) continue;
-    stencils->corners[p] = corners;
-    stencils->stencil.push_back(s);
+    if (stencils) stencils->corners[p] = corners;
   }
 }
 
@@ -55,11 +73,9 @@ void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, Particl
 template <int Dim>
 ParticleStencils<Dim> find_stencils(const Particles<Dim>& particles, const BlockGrid<Dim>& grid) {
   ParticleStencils<Dim> out;
-  out.corners.resize(particles.size());
-  for (std::size_t p = 0; p < particles.size(); ++p) {
-    out.stencil.emplace_back(particles.x[p], grid.spacing());
-    grid.stencil_corners(out.stencil.back(), out.corners[p]);
-  }
+  out.resize(particles.size());
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    grid.stencil_corners(out.update(p, particles.x[p], grid.spacing()), out.corners[p]);
   return out;
 }
 
