@@ -49,6 +49,14 @@ class BlockGrid {
     touch(s, corners);
   }
 
+  // True when the stencils with these bases (Stencil::base) lie in the same blocks, so that they
+  // have the same corners.
+  static bool same_blocks(const Index<Dim>& a, const Index<Dim>& b) {
+    for (int d = 0; d < Dim; ++d)
+      if (floor_div(a[d]) != floor_div(b[d]) || floor_div(a[d] + 3) != floor_div(b[d] + 3)) return false;
+    return true;
+  }
+
   // Activates one block (if it is not active yet) and returns its index.
   int activate(const Index<Dim>& b) {
     const auto [it, fresh] = lookup_.try_emplace(pack(b), static_cast<int>(coords_.size()));
@@ -100,18 +108,32 @@ class BlockGrid {
     });
   }
 
-  // The slots of a stencil's 4^Dim nodes, in Stencil::for_each order, from its corners (a node
-  // of a block that is not active gets a negative slot).
+  // The slots of a stencil's 4^Dim nodes, in Stencil::for_each order, from its corners (-1 for a
+  // node of a block that is not active).
   void slots_from_corners(const Stencil<Dim>& s, const Corners& corners, std::array<long, kNodes>& out) const {
-    Index<Dim> lo;
-    for (int d = 0; d < Dim; ++d) lo[d] = floor_div(s.base[d]);
-    int n = 0;
-    s.for_each([&](const Index<Dim>&, const Index<Dim>& node) {
-      int corner = 0;
-      for (int d = 0; d < Dim; ++d) corner |= (floor_div(node[d]) - lo[d]) << d;
+    // Per axis, for the stencil's nodes base + k: the corner bit of the block holding the node
+    // (0: the block of base, 1: the next one) and the node's place in its block times the axis'
+    // stride in a block.
+    std::array<std::array<int, 4>, Dim> corner_bit, place;
+    int stride = 1;
+    for (int d = 0; d < Dim; ++d) {
+      const int first = floor_div(s.base[d]);
+      for (int k = 0; k < 4; ++k) {
+        const int node = s.base[d] + k, b = floor_div(node);
+        corner_bit[d][k] = (b - first) << d;
+        place[d][k] = (node - b * kSide) * stride;
+      }
+      stride *= kSide;
+    }
+    for (int n = 0; n < kNodes; ++n) {
+      int corner = 0, l = 0;
+      for (int d = 0; d < Dim; ++d) {
+        corner |= corner_bit[d][Stencil<Dim>::corner_index(n, d)];
+        l += place[d][Stencil<Dim>::corner_index(n, d)];
+      }
       const int b = corners[static_cast<std::size_t>(corner)];
-      out[n++] = b < 0 ? -1 : static_cast<long>(b) * kNodes + local(node);
-    });
+      out[n] = b < 0 ? -1 : static_cast<long>(b) * kNodes + l;
+    }
   }
 
   // The slots of a stencil's 4^Dim nodes, in Stencil::for_each order (-1 where the block is not

@@ -58,6 +58,7 @@ struct Stencil {
   std::array<std::array<double, 4>, Dim> w{};   // per axis
   std::array<std::array<double, 4>, Dim> dw{};  // per axis, d/dx in 1/m
 
+  Stencil() = default;
   // x in metres relative to the grid origin, h the node spacing.
   Stencil(const Vec<Dim>& x, double h) {
     for (int d = 0; d < Dim; ++d) {
@@ -69,6 +70,30 @@ struct Stencil {
         dw[d][k] = cubic_bspline_derivative(r) / h;
       }
     }
+  }
+
+  static constexpr int kNodes = Dim == 2 ? 16 : 64;
+
+  // Node n's corner index along axis d (n in for_each order, x fastest).
+  static constexpr int corner_index(int n, int d) { return (n >> (2 * d)) & 3; }
+
+  // Every node's weight and gradient, in for_each order: the same values as weight() and
+  // gradient(), computed in the same order, for loops over the nodes.
+  void weights(std::array<double, kNodes>& out) const {
+    for (int n = 0; n < kNodes; ++n) {
+      double v = w[0][corner_index(n, 0)];
+      for (int d = 1; d < Dim; ++d) v *= w[d][corner_index(n, d)];
+      out[n] = v;
+    }
+  }
+  void gradients(std::array<Vec<Dim>, kNodes>& out) const {
+    for (int n = 0; n < kNodes; ++n)
+      for (int d = 0; d < Dim; ++d) {
+        double v = dw[d][corner_index(n, d)];
+        for (int e = 0; e < Dim; ++e)
+          if (e != d) v *= w[e][corner_index(n, e)];
+        out[n][d] = v;
+      }
   }
 
   double weight(const Index<Dim>& k) const {
@@ -92,7 +117,7 @@ struct Stencil {
   template <class F>
   void for_each(F&& f) const {
     Index<Dim> k{};
-    for (int n = 0; n < (Dim == 2 ? 16 : 64); ++n) {
+    for (int n = 0; n < kNodes; ++n) {
       int r = n;
       Index<Dim> node;
       for (int d = 0; d < Dim; ++d) {

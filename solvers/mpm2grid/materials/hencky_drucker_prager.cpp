@@ -47,7 +47,11 @@ double HenckyDruckerPrager::p_wave_speed(double density) const {
 
 template <int Dim>
 Matrix<Dim> HenckyDruckerPrager::kirchhoff(const Matrix<Dim>& F_E) const {
-  const RotationSvd<Dim> svd = rotation_svd<Dim>(F_E);
+  return kirchhoff<Dim>(rotation_svd<Dim>(F_E));
+}
+
+template <int Dim>
+Matrix<Dim> HenckyDruckerPrager::kirchhoff(const RotationSvd<Dim>& svd) const {
   const Vector<Dim> eps = svd.sigma.array().log().matrix();
   const Vector<Dim> principal = (2 * mu * eps.array() + lambda * eps.sum()).matrix();
   return svd.U * principal.asDiagonal() * svd.U.transpose();
@@ -113,6 +117,8 @@ ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, doubl
   if (r.kind == ReturnCase::elastic) {
     // U exp(eps + shift/Dim) V^T = exp(shift/Dim) F_trial: no SVD round-off.
     out.F = shift == 0 ? F_trial : (std::exp(shift / Dim) * F_trial).eval();
+    out.has_stress = shift == 0;
+    if (out.has_stress) out.stress = kirchhoff<Dim>(svd);
   } else {
     out.F = svd.U * r.eps.array().exp().matrix().asDiagonal() * svd.V.transpose();
   }

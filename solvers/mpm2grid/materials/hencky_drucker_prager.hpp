@@ -95,6 +95,10 @@ struct ReturnResult {
   double log_jp = 0;                      // new volume-correction state (see header comment)
   ReturnCase kind = ReturnCase::elastic;  // which branch of the return mapping was taken
   double plastic_strain = 0;              // |eps_tr - eps_new| (Frobenius, log strain) removed
+  // kirchhoff(F), when project() had it at hand: an elastic return without a volume shift keeps
+  // F = F_trial, whose SVD it has computed anyway (has_stress false otherwise).
+  bool has_stress = false;
+  Matrix<Dim> stress;
 };
 
 // Pressure p (compression positive) and equivalent shear stress q, both Pa.
@@ -171,6 +175,11 @@ struct HenckyDruckerPrager {
   // correction has something stored), with no SVD round-off.
   template <int Dim>
   ReturnResult<Dim> project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const;
+
+ private:
+  // Kirchhoff stress of the F_E with this SVD.
+  template <int Dim>
+  Matrix<Dim> kirchhoff(const RotationSvd<Dim>& svd) const;
 };
 
 // The dry cohesion c0 (Pa) of the stress-space cone above equivalent to a strain-space cohesion

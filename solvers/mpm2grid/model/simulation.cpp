@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -50,9 +51,9 @@ StepLimit Simulation<Dim>::stable_dt() const {
 template <int Dim>
 void Simulation<Dim>::build_grid() {
   grid_.clear();
-  touch_blocks(water_, grid_, &water_corners_);
-  touch_blocks(soil_, grid_, &soil_corners_);
-  if (dd_) dd_->prepare(grid_);  // adds blocks after these: the corners stay valid
+  touch_blocks(water_, grid_, &water_stencils_);
+  touch_blocks(soil_, grid_, &soil_stencils_);
+  if (dd_) dd_->prepare(grid_);  // adds blocks after these: the stencils' block indices stay valid
   water_nodes_.reset(grid_.nodes());
   soil_nodes_.reset(grid_.nodes());
 }
@@ -69,7 +70,11 @@ void Simulation<Dim>::stresses() {
   soil_drag_.resize(soil_.size());
   const double c_e = s_.soil.drag_coefficient(s_.water.density);
   for (std::size_t p = 0; p < soil_.size(); ++p) {
-    soil_tau_[p] = s_.soil.material.template kirchhoff<Dim>(soil_.F[p]);
+    // The stress is a function of F_E alone: a known one for a bit-for-bit equal F_E is the
+    // same value, without another SVD. (Particles removed or moved since only miss it.)
+    const bool known = p < known_stress_.size() && known_stress_[p].known &&
+                       std::memcmp(known_stress_[p].F.data(), soil_.F[p].data(), sizeof(Mat<Dim>)) == 0;
+    soil_tau_[p] = known ? known_stress_[p].tau : s_.soil.material.template kirchhoff<Dim>(soil_.F[p]);
     soil_drag_[p] = c_e * soil_.volume0[p] * soil_.F[p].determinant();
   }
 }
@@ -79,8 +84,8 @@ void Simulation<Dim>::step(double dt) {
   if (dd_) dd_->balance(steps_, water_, soil_);
   build_grid();
   stresses();
-  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_, &water_corners_);
-  particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_, {}, &soil_corners_);
+  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_, &water_stencils_);
+  particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_, {}, &soil_stencils_);
   if (s_.loads) add_loads();
   if (dd_) dd_->sum_to_owners(soil_nodes_, water_nodes_);
   if (s_.mixture) solid_fractions();
@@ -134,17 +139,14 @@ void Simulation<Dim>::add_buoyancy() {
   if (dd_) dd_->copy_to_ghosts(p);
   buoyancy_.assign(grid_.nodes(), Vec<Dim>::Zero());
   const double solid = 1 - s_.soil.porosity;
-  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  StencilNodes<Dim> sn;
   for (std::size_t q = 0; q < soil_.size(); ++q) {
-    const Stencil<Dim> st(soil_.x[q], s_.h);
-    grid_.slots_from_corners(st, soil_corners_[q], slots);
+    sn.fill(grid_, soil_stencils_, q, true);
     Vec<Dim> grad = Vec<Dim>::Zero();
-    int n = 0;
-    st.for_each([&](const Index<Dim>& k, const Index<Dim>&) { grad += p[static_cast<std::size_t>(slots[n++])] * st.gradient(k); });
+    for (int n = 0; n < sn.kNodes; ++n) grad += p[static_cast<std::size_t>(sn.slot[n])] * sn.gradient[n];
     if (grad.isZero(0.0)) continue;
     const Vec<Dim> force = -solid * soil_.volume0[q] * soil_.F[q].determinant() * grad;
-    n = 0;
-    st.for_each([&](const Index<Dim>& k, const Index<Dim>&) { buoyancy_[static_cast<std::size_t>(slots[n++])] += st.weight(k) * force; });
+    for (int n = 0; n < sn.kNodes; ++n) buoyancy_[static_cast<std::size_t>(sn.slot[n])] += sn.weight[n] * force;
   }
   if (dd_) dd_->sum_to_owners(buoyancy_);
   for (std::size_t i = 0; i < grid_.nodes(); ++i) soil_nodes_.force[i] += buoyancy_[i];
@@ -154,15 +156,12 @@ void Simulation<Dim>::add_buoyancy() {
 template <int Dim>
 void Simulation<Dim>::add_loads() {
   const double ramp = s_.load_ramp > 0 ? std::min(1.0, time_ / s_.load_ramp) : 1.0;
-  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  StencilNodes<Dim> sn;
   for (std::size_t q = 0; q < soil_.size(); ++q) {
     if (soil_.load[q].isZero(0.0)) continue;
-    const Stencil<Dim> st(soil_.x[q], s_.h);
-    grid_.slots_from_corners(st, soil_corners_[q], slots);
-    int n = 0;
-    st.for_each([&](const Index<Dim>& k, const Index<Dim>&) {
-      soil_nodes_.force[static_cast<std::size_t>(slots[n++])] += st.weight(k) * ramp * soil_.load[q];
-    });
+    sn.fill(grid_, soil_stencils_, q, false);
+    for (int n = 0; n < sn.kNodes; ++n)
+      soil_nodes_.force[static_cast<std::size_t>(sn.slot[n])] += sn.weight[n] * ramp * soil_.load[q];
   }
 }
 
@@ -184,18 +183,16 @@ void Simulation<Dim>::solid_fractions() {
 // species at the particles' positions at the step's start.
 template <int Dim>
 void Simulation<Dim>::mixture_volume_rates(double dt) {
-  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  StencilNodes<Dim> sn;
   for (std::size_t p = 0; p < water_.size(); ++p) {
-    const Stencil<Dim> st(water_.x[p], s_.h);
-    grid_.slots_from_corners(st, water_corners_[p], slots);
+    sn.fill(grid_, water_stencils_, p, true);
     double phi = 0, div = 0;
-    int n = 0;
-    st.for_each([&](const Index<Dim>& k, const Index<Dim>&) {
-      const auto i = static_cast<std::size_t>(slots[n++]);
+    for (int n = 0; n < sn.kNodes; ++n) {
+      const auto i = static_cast<std::size_t>(sn.slot[n]);
       const double f = solid_fraction_[i];
-      phi += st.weight(k) * f;
-      div += (f * soil_nodes_.velocity[i] + (1 - f) * water_nodes_.velocity[i]).dot(st.gradient(k));
-    });
+      phi += sn.weight[n] * f;
+      div += (f * soil_nodes_.velocity[i] + (1 - f) * water_nodes_.velocity[i]).dot(sn.gradient[n]);
+    }
     water_.J[p] *= 1 + dt * div / (1 - phi);
   }
 }
@@ -208,20 +205,23 @@ void Simulation<Dim>::distribute() {
 template <int Dim>
 void Simulation<Dim>::update_particles(double dt) {
   const Mat<Dim> I = Mat<Dim>::Identity();
-  grid_to_particles(water_, grid_, water_nodes_, grad_v_, &water_corners_);
+  grid_to_particles(water_, grid_, water_nodes_, grad_v_, &water_stencils_);
   if (s_.mixture) mixture_volume_rates(dt);
   for (std::size_t p = 0; p < water_.size(); ++p) {
     water_.x[p] += dt * water_.v[p];
     if (!s_.mixture) water_.J[p] *= 1 + dt * grad_v_[p].trace();
     s_.walls.clamp(water_.x[p]);
   }
-  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &soil_corners_);
+  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &soil_stencils_);
+  known_stress_.resize(soil_.size());
   for (std::size_t p = 0; p < soil_.size(); ++p) {
     soil_.x[p] += dt * soil_.v[p];
     const Mat<Dim> trial = (I + dt * grad_v_[p]) * soil_.F[p];
     const auto r = s_.soil.material.template project<Dim>(trial, soil_.log_jp[p], soil_.saturation[p]);
     soil_.F[p] = r.F;
     soil_.log_jp[p] = r.log_jp;
+    known_stress_[p].known = r.has_stress;
+    if (r.has_stress) known_stress_[p].F = r.F, known_stress_[p].tau = r.stress;
     s_.walls.clamp(soil_.x[p]);
   }
 }
@@ -231,16 +231,23 @@ void Simulation<Dim>::update_saturation() {
   if (soil_.size() == 0) return;
   const double h = s_.h, node_volume = std::pow(h, Dim);
   const double full = s_.water.density * node_volume * s_.soil.porosity;
+  // At the particles' new positions: their stencils may reach blocks that are not active (-1).
+  // Neighbouring particles mostly lie in the same blocks: those are looked up once. The
+  // stencils are kept for the next step's touch_blocks (this step's are used up).
   std::array<long, BlockGrid<Dim>::kNodes> slots;
+  std::array<double, BlockGrid<Dim>::kNodes> weights;
+  typename BlockGrid<Dim>::Corners corners{};
+  Index<Dim> previous{};
+  soil_stencils_.resize(soil_.size());
   for (std::size_t p = 0; p < soil_.size(); ++p) {
-    const Stencil<Dim> st(soil_.x[p], h);
-    grid_.stencil_slots(st, slots);
+    const Stencil<Dim>& st = soil_stencils_.update(p, soil_.x[p], h);
+    if (p == 0 || !BlockGrid<Dim>::same_blocks(st.base, previous)) grid_.stencil_corners(st, corners);
+    previous = st.base;
+    grid_.slots_from_corners(st, corners, slots);
+    st.weights(weights);
     double phi = 0;
-    int n = 0;
-    st.for_each([&](const Index<Dim>& k, const Index<Dim>&) {
-      const long i = slots[n++];
-      if (i >= 0) phi += st.weight(k) * water_nodes_.mass[i];
-    });
+    for (int n = 0; n < st.kNodes; ++n)
+      if (slots[n] >= 0) phi += weights[n] * water_nodes_.mass[static_cast<std::size_t>(slots[n])];
     soil_.saturation[p] = std::clamp(phi / full, 0.0, 1.0);
   }
 }

@@ -55,6 +55,7 @@
 #include "solvers/mpm2grid/materials/hencky_drucker_prager.hpp"
 #include "solvers/mpm2grid/materials/weakly_compressible_water.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
+#include "solvers/mpm2grid/transfer/apic.hpp"
 
 namespace suite::mpm2grid {
 
@@ -185,7 +186,14 @@ class Simulation {
   std::vector<double> soil_drag_, water_pressure_;
   std::vector<double> solid_fraction_;  // mixture: phi_s per node slot
   std::vector<Vec<Dim>> buoyancy_;  // per node slot, N
-  std::vector<typename BlockGrid<Dim>::Corners> water_corners_, soil_corners_;  // this step's blocks per particle
+  // Per soil particle, a Kirchhoff stress the return mapping had at hand and the F_E it belongs
+  // to: the next stresses() takes it where the particle's F_E is still exactly that one.
+  struct KnownStress {
+    bool known = false;
+    Mat<Dim> F, tau;
+  };
+  std::vector<KnownStress> known_stress_;
+  ParticleStencils<Dim> water_stencils_, soil_stencils_;  // this step's stencils and blocks per particle
   std::optional<mpi::Comm> comm_;
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;
   SolveStats drag_stats_{};

@@ -8,6 +8,8 @@
 //        grad v_p = sum_i v_i (grad w_ip)^T.
 // P2G conserves mass, linear and angular momentum exactly (the weights are a partition of unity
 // and reproduce linear functions); G2P then P2G loses no angular momentum either.
+#include <array>
+#include <cstring>
 #include <vector>
 
 #include "solvers/mpm2grid/grid/block_grid.hpp"
@@ -18,84 +20,159 @@ namespace suite::mpm2grid {
 template <int Dim>
 using CornerList = std::vector<typename BlockGrid<Dim>::Corners>;
 
-// Activates the grid blocks the particles' stencils touch; with `corners`, also the indices of
-// each particle's blocks (one entry per particle), which the transfers below then use instead of
-// looking the blocks up again.
+// Each particle's stencil (B-spline weights) and the indices of the grid blocks it touches
+// (Corners), found once a step by touch_blocks and used by every transfer of that step instead
+// of evaluating the B-splines and looking the blocks up again. A stencil depends on the
+// particle's position alone: one kept for the position a particle still has is not evaluated
+// again (the saturation update keeps those of the soil's new positions for the next step).
 template <int Dim>
-void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, CornerList<Dim>* corners = nullptr) {
+struct ParticleStencils {
+  std::vector<Stencil<Dim>> stencil;
+  CornerList<Dim> corners;
+  std::vector<Vec<Dim>> position;  // the position stencil[p] is of, where kept[p]
+  std::vector<char> kept;
+
+  // Room for n particles (the kept stencils of the first ones stay).
+  void resize(std::size_t n) {
+    stencil.resize(n);
+    corners.resize(n);
+    position.resize(n);
+    kept.resize(n, 0);
+  }
+  // Particle p's stencil at x: the one kept for p when it is of x bit for bit, else a new one,
+  // kept.
+  const Stencil<Dim>& update(std::size_t p, const Vec<Dim>& x, double h) {
+    if (!kept[p] || std::memcmp(position[p].data(), x.data(), sizeof(Vec<Dim>)) != 0) {
+      stencil[p] = Stencil<Dim>(x, h);
+      position[p] = x;
+      kept[p] = 1;
+    }
+    return stencil[p];
+  }
+};
+
+// Activates the grid blocks the particles' stencils touch; with `stencils`, also keeps each
+// particle's stencil and block indices (one entry per particle).
+template <int Dim>
+void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, ParticleStencils<Dim>* stencils = nullptr) {
   const double h = grid.spacing();
-  if (corners) corners->resize(particles.size());
+  if (stencils) stencils->resize(particles.size());
+  typename BlockGrid<Dim>::Corners corners{};
+  Index<Dim> previous{};
   for (std::size_t p = 0; p < particles.size(); ++p) {
-    const Stencil<Dim> s(particles.x[p], h);
-    if (corners)
-      grid.touch(s, (*corners)[p]);
-    else
-      grid.touch(s);
+    const Stencil<Dim> s = stencils ? stencils->update(p, particles.x[p], h) : Stencil<Dim>(particles.x[p], h);
+    // Neighbouring particles mostly lie in the same blocks as the one before them: then those
+    // blocks are active and their indices known, without looking them up.
+    if (p == 0 || !BlockGrid<Dim>::same_blocks(s.base, previous)) grid.touch(s, corners);
+    previous = s.base;
+    if (stencils) stencils->corners[p] = corners;
   }
 }
 
-// A particle's node slots: from its corners when given, else by lookup.
+// The particles' stencils on a grid whose blocks are already active (looked up, not activated).
 template <int Dim>
-void particle_slots(const BlockGrid<Dim>& grid, const Stencil<Dim>& s, const CornerList<Dim>* corners, std::size_t p,
-                    std::array<long, BlockGrid<Dim>::kNodes>& slots) {
-  if (corners)
-    grid.slots_from_corners(s, (*corners)[p], slots);
-  else
-    grid.stencil_slots(s, slots);
+ParticleStencils<Dim> find_stencils(const Particles<Dim>& particles, const BlockGrid<Dim>& grid) {
+  ParticleStencils<Dim> out;
+  out.resize(particles.size());
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    grid.stencil_corners(out.update(p, particles.x[p], grid.spacing()), out.corners[p]);
+  return out;
+}
+
+// One particle's stencil nodes as a transfer loops over them (Stencil::for_each order): each
+// node's slot, weight and, when asked for, weight gradient.
+template <int Dim>
+struct StencilNodes {
+  static constexpr int kNodes = BlockGrid<Dim>::kNodes;
+  std::array<long, kNodes> slot;
+  std::array<double, kNodes> weight;
+  std::array<Vec<Dim>, kNodes> gradient;
+
+  void fill(const BlockGrid<Dim>& grid, const ParticleStencils<Dim>& stencils, std::size_t p, bool gradients) {
+    const Stencil<Dim>& s = stencils.stencil[p];
+    grid.slots_from_corners(s, stencils.corners[p], slot);
+    s.weights(weight);
+    if (gradients) s.gradients(gradient);
+  }
+};
+
+// x_i - x_p per axis for the stencil's nodes base + k: offset[d][k] = (base[d] + k) h - x_p[d].
+template <int Dim>
+std::array<std::array<double, 4>, Dim> node_offsets(const Stencil<Dim>& s, const Vec<Dim>& x, double h) {
+  std::array<std::array<double, 4>, Dim> offset;
+  for (int d = 0; d < Dim; ++d)
+    for (int k = 0; k < 4; ++k) offset[d][k] = (s.base[d] + k) * h - x[d];
+  return offset;
 }
 
 // Adds one species' particles to its node fields (reset to the grid's size by the caller).
 // tau: one Kirchhoff stress per particle (Pa), or empty for none; drag: c_E V per particle
-// (kg/s), or empty; pressure: p per particle (Pa), added as w m p, or empty; corners: from
-// touch_blocks for these particles and this grid, or null.
+// (kg/s), or empty; pressure: p per particle (Pa), added as w m p, or empty; stencils: from
+// touch_blocks for these particles and this grid, or null (then looked up).
 template <int Dim>
 void particles_to_grid(const Particles<Dim>& P, const std::vector<Mat<Dim>>& tau, const std::vector<double>& drag,
                        const BlockGrid<Dim>& grid, NodeFields<Dim>& nodes, const std::vector<double>& pressure = {},
-                       const CornerList<Dim>* corners = nullptr) {
+                       const ParticleStencils<Dim>* stencils = nullptr) {
+  if (!stencils) {
+    const ParticleStencils<Dim> found = find_stencils(P, grid);
+    particles_to_grid(P, tau, drag, grid, nodes, pressure, &found);
+    return;
+  }
   const double h = grid.spacing();
-  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  StencilNodes<Dim> sn;
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const Stencil<Dim> s(P.x[p], h);
-    particle_slots(grid, s, corners, p, slots);
+    const Stencil<Dim>& s = stencils->stencil[p];
+    sn.fill(grid, *stencils, p, !tau.empty());
+    const auto offset = node_offsets(s, P.x[p], h);
     const Mat<Dim> stress = tau.empty() ? Mat<Dim>::Zero() : Mat<Dim>(P.volume0[p] * tau[p]);
     const double m = P.mass[p];
-    int n = 0;
-    s.for_each([&](const Index<Dim>& k, const Index<Dim>& node) {
-      const long i = slots[n++];
-      const double w = s.weight(k);
-      Vec<Dim> xi;
-      for (int d = 0; d < Dim; ++d) xi[d] = node[d] * h;
-      nodes.mass[i] += w * m;
-      nodes.momentum[i] += w * m * (P.v[p] + P.C[p] * (xi - P.x[p]));
-      if (!tau.empty()) nodes.force[i] -= stress * s.gradient(k);
+    for (int n = 0; n < StencilNodes<Dim>::kNodes; ++n) {
+      const auto i = static_cast<std::size_t>(sn.slot[n]);
+      const double w = sn.weight[n], wm = w * m;
+      Vec<Dim> dx;
+      for (int d = 0; d < Dim; ++d) dx[d] = offset[d][Stencil<Dim>::corner_index(n, d)];
+      nodes.mass[i] += wm;
+      nodes.momentum[i] += wm * (P.v[p] + P.C[p] * dx);
+      if (!tau.empty()) nodes.force[i] -= stress * sn.gradient[n];
       if (!drag.empty()) nodes.drag[i] += w * drag[p];
-      if (!pressure.empty()) nodes.pressure[i] += w * m * pressure[p];
-    });
+      if (!pressure.empty()) nodes.pressure[i] += wm * pressure[p];
+    }
   }
 }
 
 // Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized).
+// stencils: from touch_blocks for these particles and this grid, or null (then looked up).
 template <int Dim>
 void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
-                       std::vector<Mat<Dim>>& grad_v, const CornerList<Dim>* corners = nullptr) {
+                       std::vector<Mat<Dim>>& grad_v, const ParticleStencils<Dim>* stencils = nullptr) {
+  if (!stencils) {
+    const ParticleStencils<Dim> found = find_stencils(P, grid);
+    grid_to_particles(P, grid, nodes, grad_v, &found);
+    return;
+  }
   const double h = grid.spacing(), inverse_d = apic_inverse_d(h);
   grad_v.resize(P.size());
-  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  StencilNodes<Dim> sn;
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const Stencil<Dim> s(P.x[p], h);
-    particle_slots(grid, s, corners, p, slots);
+    sn.fill(grid, *stencils, p, true);
+    const auto offset = node_offsets(stencils->stencil[p], P.x[p], h);
+    // v = sum w v_i, B = sum w v_i (x_i - x_p)^T, G = sum v_i (grad w)^T, coefficient by
+    // coefficient (Eigen's expressions here go through temporaries in memory).
     Vec<Dim> v = Vec<Dim>::Zero();
     Mat<Dim> B = Mat<Dim>::Zero(), G = Mat<Dim>::Zero();
-    int n = 0;
-    s.for_each([&](const Index<Dim>& k, const Index<Dim>& node) {
-      const Vec<Dim>& vi = nodes.velocity[slots[n++]];
-      const double w = s.weight(k);
-      Vec<Dim> xi;
-      for (int d = 0; d < Dim; ++d) xi[d] = node[d] * h;
-      v += w * vi;
-      B += w * vi * (xi - P.x[p]).transpose();
-      G += vi * s.gradient(k).transpose();
-    });
+    for (int n = 0; n < StencilNodes<Dim>::kNodes; ++n) {
+      const Vec<Dim>& vi = nodes.velocity[static_cast<std::size_t>(sn.slot[n])];
+      const Vec<Dim>& grad = sn.gradient[n];
+      const double w = sn.weight[n];
+      for (int a = 0; a < Dim; ++a) {
+        const double wv = w * vi[a];
+        v[a] += wv;
+        for (int b = 0; b < Dim; ++b) {
+          B(a, b) += wv * offset[b][Stencil<Dim>::corner_index(n, b)];
+          G(a, b) += vi[a] * grad[b];
+        }
+      }
+    }
     P.v[p] = v;
     P.C[p] = inverse_d * B;
     grad_v[p] = G;
