@@ -10,8 +10,9 @@ launcher=()
 while [ "$1" != "--" ]; do launcher+=("$1"); shift; done
 shift
 exe=$1
-# Enough work (a few seconds on 2 ranks) for the signals to land mid-run.
-scene=(cells=200000 time.sample=0.0002s time.output=0.3s checkpoint.every_steps=1000000)
+# Enough work (a few seconds on 2 ranks, also on a fast machine: at 200,000 cells a 2-core Xeon VM
+# finished the run before mpiexec had passed SIGTERM on) for the signals to land mid-run.
+scene=(cells=800000 time.sample=0.0002s time.output=0.3s checkpoint.every_steps=1000000)
 rm -rf "$work" && mkdir -p "$work"
 
 "${launcher[@]}" "$exe" --out "$work/pieces" "${scene[@]}" >"$work/pieces.log" 2>&1 &
