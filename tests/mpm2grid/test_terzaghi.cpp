@@ -110,7 +110,7 @@ std::vector<Errors> consolidate(double h, const std::vector<double>& times, std:
     int n_top = 0, n_bottom = 0;
     for (std::size_t p = 0; p < soil.size(); ++p) {
       if (soil.load[p][1] < 0) top += soil.x[p][1], ++n_top;
-      if (soil.volume0[p] > 0 && soil.x[p][1] < h / 2 && soil.load[p][1] == 0) bottom += soil.x[p][1], ++n_bottom;
+      if (soil.x[p][1] < h / 2 && soil.load[p][1] == 0) bottom += soil.x[p][1], ++n_bottom;
     }
     EXPECT_EQ(n_top, n_bottom);
     return top / n_top - bottom / n_bottom;
@@ -165,7 +165,9 @@ TEST(Terzaghi, ConsolidationFollowsTheoryAndConvergesInH) {
 
 // The same column in 3D, two cells wide in x and z between slip walls, at h = H/16: the mixture's
 // J update, solid fractions (a node on an edge of the box has 1/4 of its weight inside) and
-// wave speed in three dimensions. Against the 2D run's tolerances at H/16 (about 20 s).
+// wave speed in three dimensions (about 16 s). The 2D column at the same h measures L1 3.3% and
+// interior 2.6% of sigma at T_v = 0.6, so 5% asks 3D to be as good as 2D with a margin for the
+// coarse grid; the shortening is held to the 2D bound.
 TEST(Terzaghi, ConsolidationIn3D) {
   const std::vector<double> times{0.6, 1.2};
   const double h = 1.0 / 16, w = 2 * h;

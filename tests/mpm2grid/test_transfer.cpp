@@ -195,7 +195,9 @@ TEST(BsplineIntegral, MatchesTheQuadratureOfTheKernel) {
   for (int i = 0; i < n; ++i) {
     const double r = -2 + 4.0 * (i + 0.5) / n;
     sum += cubic_bspline(r) * 4.0 / n;
-    if (i % 1000 == 999) EXPECT_NEAR(cubic_bspline_integral(r + 2.0 / n), sum, 2e-9) << r;
+    if (i % 1000 == 999) {
+      EXPECT_NEAR(cubic_bspline_integral(r + 2.0 / n), sum, 2e-9) << r;
+    }
   }
 }
 
@@ -206,7 +208,7 @@ TEST(BsplineIntegral, InsideFractionIsTheWeightOfAFullBox) {
   Walls<2> walls;
   walls.lo = Vec<2>(0, 0), walls.hi = Vec<2>(1, 1);
   const double h = 0.125, s = h / 64;
-  for (const Vec<2> node : {Vec<2>(0, 0.5), Vec<2>(-h, 0.5), Vec<2>(h, h), Vec<2>(0.5, 0.5), Vec<2>(1 + h, 1)}) {
+  for (const Vec<2>& node : {Vec<2>(0, 0.5), Vec<2>(-h, 0.5), Vec<2>(h, h), Vec<2>(0.5, 0.5), Vec<2>(1 + h, 1)}) {
     double sum = 0;
     for (double x = s / 2; x < 1; x += s)
       for (double y = s / 2; y < 1; y += s)
