@@ -12,6 +12,7 @@
 #include "solvers/mpm2grid/decomposition/partition.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
+#include "solvers/mpm2grid/transfer/particle_order.hpp"
 
 namespace suite::mpm2grid {
 namespace {
@@ -30,10 +31,13 @@ TEST(Partition, BalancesBothSpeciesOverConnectedParts) {
     const auto part = partition_blocks<2>(blocks, weights, parts);
     std::vector<std::array<long long, 2>> load(static_cast<std::size_t>(parts), {0, 0});
     for (std::size_t b = 0; b < blocks.size(); ++b)
-      for (int s = 0; s < 2; ++s) load[static_cast<std::size_t>(part[b])][static_cast<std::size_t>(s)] += weights[b][static_cast<std::size_t>(s)];
+      for (int s = 0; s < 2; ++s)
+        load[static_cast<std::size_t>(part[b])][static_cast<std::size_t>(s)] += weights[b][static_cast<std::size_t>(s)];
     for (int s = 0; s < 2; ++s) {
       const double mean = (s == 0 ? 4800.0 : 4320.0) / parts;
-      for (const auto& l : load) EXPECT_LE(static_cast<double>(l[static_cast<std::size_t>(s)]), 1.05 * mean + 100) << parts << " parts, species " << s;
+      for (const auto& l : load)
+        EXPECT_LE(static_cast<double>(l[static_cast<std::size_t>(s)]), 1.05 * mean + 100)
+            << parts << " parts, species " << s;
     }
   }
 }
@@ -55,7 +59,8 @@ TEST(Partition, KeepRanksFollowsTheWork) {
 TEST(BlockGrid, KeysRoundTrip) {
   for (const Index<3>& b : {Index<3>{0, 0, 0}, Index<3>{-5, 17, -1000}, Index<3>{1 << 19, -(1 << 20), 3}})
     EXPECT_EQ(BlockGrid<3>::unkey(BlockGrid<3>::key(b)), b);
-  for (const Index<2>& b : {Index<2>{-1, 2}, Index<2>{123456, -654321}}) EXPECT_EQ(BlockGrid<2>::unkey(BlockGrid<2>::key(b)), b);
+  for (const Index<2>& b : {Index<2>{-1, 2}, Index<2>{123456, -654321}})
+    EXPECT_EQ(BlockGrid<2>::unkey(BlockGrid<2>::key(b)), b);
   // A particle's home block holds the lower corner of its cell (node floor(x / h)).
   BlockGrid<2> grid(0.5);
   EXPECT_EQ(grid.home_block(Vec<2>(1.99, -0.01)), (Index<2>{0, -1}));
@@ -80,6 +85,37 @@ TEST(Particles, PackedStateRoundTrips) {
   EXPECT_EQ(b.J[0], a.J[0]);
   EXPECT_EQ(b.log_jp[0], a.log_jp[0]);
   EXPECT_EQ(b.saturation[0], a.saturation[0]);
+  EXPECT_EQ(b.id[0], a.id[0]);
+}
+
+// Ids number the particles in the order add() made them, travel with them through a reordering
+// and a removal, and are not given twice.
+TEST(Particles, IdsFollowTheirParticles) {
+  Particles<2> P;
+  for (int i = 0; i < 6; ++i) P.add(Vec<2>(i, 0), Vec<2>(0, i), 1.0 + i, 1.0);
+  EXPECT_EQ(P.id, (std::vector<std::int64_t>{0, 1, 2, 3, 4, 5}));
+  const std::vector<std::size_t> order{5, 3, 1, 0, 2, 4};
+  P.reorder([&](auto& values) { apply_order(values, order); });
+  P.retain([&](std::size_t p) { return P.id[p] != 3; });
+  ASSERT_EQ(P.size(), 5u);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    EXPECT_EQ(P.x[p][0], static_cast<double>(P.id[p]));
+    EXPECT_EQ(P.mass[p], 1.0 + static_cast<double>(P.id[p]));
+  }
+  P.add(Vec<2>(9, 9), Vec<2>::Zero(), 1.0, 1.0);
+  EXPECT_EQ(P.id.back(), 6);
+}
+
+// Group order: each group's particles consecutive, in their own order within a group, groups in
+// block order; particles that already come in few enough runs are left as they are.
+TEST(ParticleOrder, GroupsBecomeConsecutiveAndStable) {
+  const std::vector<int> group{2, 0, 2, 1, 0, 2, 1, 0};
+  const auto order = group_order(group, 3);
+  EXPECT_EQ(order, (std::vector<std::size_t>{1, 4, 7, 3, 6, 0, 2, 5}));
+  // 3 groups in 3 runs, and 4 groups in 5 runs (a quarter more): no reordering.
+  EXPECT_TRUE(group_order({0, 0, 1, 1, 2}, 3).empty());
+  EXPECT_TRUE(group_order({3, 3, 0, 1, 1, 2, 3}, 4).empty());
+  EXPECT_FALSE(group_order({3, 0, 1, 3, 2, 3}, 4).empty());
 }
 
 }  // namespace

@@ -175,6 +175,93 @@ TYPED_TEST(Transfer, AffineVelocityFieldIsTransferredExactly) {
   }
 }
 
+// The tiled transfers (grid/node_tile.hpp, transfer/stencil_rows.hpp) against the sums of the
+// spec written node by node with Stencil's weights and gradients and BlockGrid's slots, for
+// particles in no particular order (so that groups recur and tiles are flushed and gathered many
+// times), with stresses, drag coefficients and pressures. The two sum the same terms in another
+// order: the relative difference is round-off (kRoundOff, see the top).
+TYPED_TEST(Transfer, TiledTransfersEqualTheNodeByNodeSums) {
+  constexpr int Dim = TypeParam::value;
+  std::mt19937 rng(17);
+  const double h = 0.05;
+  Particles<Dim> P;
+  std::vector<Mat<Dim>> tau;
+  std::vector<double> extra;
+  for (int i = 0; i < 400; ++i) {
+    P.add(random_point<Dim>(rng, -0.4, 0.3), random_point<Dim>(rng, -1.0, 1.0), 0.5 + (i % 5) * 0.2, 1e-3);
+    P.C.back() = Mat<Dim>::Random() * 3.0;
+    tau.push_back(Mat<Dim>::Random() * 1e4);
+    extra.push_back(1e3 * (1 + i % 3));
+  }
+  BlockGrid<Dim> grid(h);
+  touch_blocks(P, grid);
+  for (const bool water : {true, false}) {  // pressure (water) or drag (soil) as the extra field
+    NodeFields<Dim> tiled, direct;
+    tiled.reset(grid.nodes());
+    direct.reset(grid.nodes());
+    particles_to_grid(P, tau, water ? std::vector<double>{} : extra, grid, tiled,
+                      water ? extra : std::vector<double>{});
+    std::array<long, BlockGrid<Dim>::kNodes> slots;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      const Stencil<Dim> st(P.x[p], h);
+      grid.stencil_slots(st, slots);
+      int n = 0;
+      st.for_each([&](const Index<Dim>& k, const Index<Dim>& node) {
+        const auto i = static_cast<std::size_t>(slots[static_cast<std::size_t>(n++)]);
+        Vec<Dim> xi;
+        for (int d = 0; d < Dim; ++d) xi[d] = node[d] * h;
+        const double w = st.weight(k);
+        direct.mass[i] += w * P.mass[p];
+        direct.momentum[i] += w * P.mass[p] * (P.v[p] + P.C[p] * (xi - P.x[p]));
+        direct.force[i] -= P.volume0[p] * tau[p] * st.gradient(k);
+        (water ? direct.pressure[i] : direct.drag[i]) += w * (water ? P.mass[p] : 1.0) * extra[p];
+      });
+    }
+    double mass = 0, momentum = 0, force = 0, ext = 0;  // scales: the largest of each
+    for (std::size_t i = 0; i < grid.nodes(); ++i) {
+      mass = std::max(mass, direct.mass[i]);
+      momentum = std::max(momentum, direct.momentum[i].norm());
+      force = std::max(force, direct.force[i].norm());
+      ext = std::max({ext, direct.pressure[i], direct.drag[i]});
+    }
+    for (std::size_t i = 0; i < grid.nodes(); ++i) {
+      ASSERT_NEAR(tiled.mass[i], direct.mass[i], kRoundOff * mass);
+      ASSERT_LT((tiled.momentum[i] - direct.momentum[i]).norm(), kRoundOff * momentum);
+      ASSERT_LT((tiled.force[i] - direct.force[i]).norm(), kRoundOff * force);
+      ASSERT_NEAR(tiled.pressure[i], direct.pressure[i], kRoundOff * ext);
+      ASSERT_NEAR(tiled.drag[i], direct.drag[i], kRoundOff * ext);
+    }
+  }
+  // G2P of an arbitrary velocity field against v = sum w v_i, B = sum w v_i (x_i - x_p)^T, G =
+  // sum v_i grad w^T.
+  NodeFields<Dim> nodes;
+  nodes.reset(grid.nodes());
+  for (auto& v : nodes.velocity) v = random_point<Dim>(rng, -2.0, 2.0);
+  std::vector<Mat<Dim>> grad_v;
+  const auto x = P.x;
+  grid_to_particles(P, grid, nodes, grad_v);
+  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Stencil<Dim> st(x[p], h);
+    grid.stencil_slots(st, slots);
+    Vec<Dim> v = Vec<Dim>::Zero();
+    Mat<Dim> B = Mat<Dim>::Zero(), G = Mat<Dim>::Zero();
+    int n = 0;
+    st.for_each([&](const Index<Dim>& k, const Index<Dim>& node) {
+      const Vec<Dim>& vi = nodes.velocity[static_cast<std::size_t>(slots[static_cast<std::size_t>(n++)])];
+      Vec<Dim> xi;
+      for (int d = 0; d < Dim; ++d) xi[d] = node[d] * h;
+      v += st.weight(k) * vi;
+      B += st.weight(k) * vi * (xi - x[p]).transpose();
+      G += vi * st.gradient(k).transpose();
+    });
+    // Velocities of O(2) m/s over O(100) terms; gradients O(2 / h).
+    ASSERT_LT((P.v[p] - v).norm(), kRoundOff * 2);
+    ASSERT_LT((P.C[p] - apic_inverse_d(h) * B).norm(), kRoundOff * 2 / h);
+    ASSERT_LT((grad_v[p] - G).norm(), kRoundOff * 2 / h);
+  }
+}
+
 }  // namespace
 }  // namespace suite::mpm2grid
 

@@ -17,9 +17,9 @@ namespace suite::mpm2grid {
 template <int Dim>
 class BlockGrid {
  public:
-  static constexpr int kSide = 4;                     // nodes per block side
-  static constexpr int kNodes = Dim == 2 ? 16 : 64;   // nodes per block (and per stencil)
-  static constexpr int kStencilBlocks = 1 << Dim;     // blocks a stencil can touch
+  static constexpr int kSide = 4;                    // nodes per block side
+  static constexpr int kNodes = Dim == 2 ? 16 : 64;  // nodes per block (and per stencil)
+  static constexpr int kStencilBlocks = 1 << Dim;    // blocks a stencil can touch
 
   using Key = std::uint64_t;  // a block's coordinates packed into one integer (key())
 
@@ -40,10 +40,12 @@ class BlockGrid {
   // (slots_from_corners); blocks added later do not change the indices of earlier ones.
   using Corners = std::array<int, kStencilBlocks>;
 
-  // Activates the blocks the stencil's 4^Dim nodes lie in, and gives their indices.
-  void touch(const Stencil<Dim>& s, Corners& corners) {
-    for_stencil_blocks(s, [&](int corner, const Index<Dim>& b) { corners[corner] = activate(b); });
+  // Activates the blocks the 4^Dim nodes of the stencil with first node `base` lie in, and gives
+  // their indices.
+  void touch(const Index<Dim>& base, Corners& corners) {
+    for_stencil_blocks(base, [&](int corner, const Index<Dim>& b) { corners[corner] = activate(b); });
   }
+  void touch(const Stencil<Dim>& s, Corners& corners) { touch(s.base, corners); }
   void touch(const Stencil<Dim>& s) {
     Corners corners;
     touch(s, corners);
@@ -62,6 +64,12 @@ class BlockGrid {
     const auto [it, fresh] = lookup_.try_emplace(pack(b), static_cast<int>(coords_.size()));
     if (fresh) coords_.push_back(b);
     return it->second;
+  }
+
+  // Index of the block with coordinates b, or -1 when it is not active.
+  int find_block(const Index<Dim>& b) const {
+    const auto it = lookup_.find(pack(b));
+    return it == lookup_.end() ? -1 : it->second;
   }
 
   // Index of the block holding `node`, or -1 when that block is not active.
@@ -102,10 +110,7 @@ class BlockGrid {
 
   // The corners of a stencil by lookup (-1 for a block that is not active).
   void stencil_corners(const Stencil<Dim>& s, Corners& corners) const {
-    for_stencil_blocks(s, [&](int corner, const Index<Dim>& b) {
-      const auto it = lookup_.find(pack(b));
-      corners[corner] = it == lookup_.end() ? -1 : it->second;
-    });
+    for_stencil_blocks(s.base, [&](int corner, const Index<Dim>& b) { corners[corner] = find_block(b); });
   }
 
   // The slots of a stencil's 4^Dim nodes, in Stencil::for_each order, from its corners (-1 for a
@@ -179,13 +184,13 @@ class BlockGrid {
     for (int d = 0; d < Dim; ++d) key = (key << 21) | static_cast<std::uint64_t>((b[d] + (1 << 20)) & 0x1FFFFF);
     return key;
   }
-  // f(corner bits, block) for the 2^Dim blocks a stencil (base .. base + 3) may touch; when the
+  // f(corner bits, block) for the 2^Dim blocks a stencil (nodes base .. base + 3) may touch; when the
   // stencil lies in one block along an axis, the corner's block repeats that one.
   template <class F>
-  void for_stencil_blocks(const Stencil<Dim>& s, F&& f) const {
+  void for_stencil_blocks(const Index<Dim>& base, F&& f) const {
     for (int corner = 0; corner < kStencilBlocks; ++corner) {
       Index<Dim> b;
-      for (int d = 0; d < Dim; ++d) b[d] = floor_div(s.base[d] + ((corner >> d) & 1) * 3);
+      for (int d = 0; d < Dim; ++d) b[d] = floor_div(base[d] + ((corner >> d) & 1) * 3);
       f(corner, b);
     }
   }
@@ -198,13 +203,13 @@ class BlockGrid {
 // One species' grid values, one entry per node slot.
 template <int Dim>
 struct NodeFields {
-  std::vector<double> mass;          // kg (per metre of thickness in 2D)
-  std::vector<Vec<Dim>> momentum;    // kg m/s: sum_p w_ip m_p (v_p + C_p (x_i - x_p))
-  std::vector<Vec<Dim>> force;       // N: internal + gravity
-  std::vector<Vec<Dim>> velocity;    // m/s after the grid solve
-  std::vector<double> drag;          // kg/s: sum_p c_E,p V_p w_ip (soil only)
-  std::vector<double> pressure;      // water only, with buoyancy: sum_p w_ip m_p p_p after P2G,
-                                     // then the mass-weighted pressure (Pa)
+  std::vector<double> mass;        // kg (per metre of thickness in 2D)
+  std::vector<Vec<Dim>> momentum;  // kg m/s: sum_p w_ip m_p (v_p + C_p (x_i - x_p))
+  std::vector<Vec<Dim>> force;     // N: internal + gravity
+  std::vector<Vec<Dim>> velocity;  // m/s after the grid solve
+  std::vector<double> drag;        // kg/s: sum_p c_E,p V_p w_ip (soil only)
+  std::vector<double> pressure;    // water only, with buoyancy: sum_p w_ip m_p p_p after P2G,
+                                   // then the mass-weighted pressure (Pa)
 
   void reset(std::size_t nodes) {
     mass.assign(nodes, 0.0);

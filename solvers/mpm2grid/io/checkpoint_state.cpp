@@ -37,6 +37,8 @@ void write_species(checkpoint::Writer& w, const std::string& s, const Particles<
   w.write<double>(s + "/log_jp", P.log_jp);
   w.write<double>(s + "/saturation", P.saturation);
   w.write<double>(s + "/load", flat(P.load));
+  std::vector<long long> id(P.id.begin(), P.id.end());
+  w.write<long long>(s + "/id", id);
 }
 
 template <int Dim>
@@ -51,9 +53,11 @@ void read_species(checkpoint::Reader& r, const std::string& s, Particles<Dim>& P
   P.log_jp = r.read<double>(s + "/log_jp");
   P.saturation = r.read<double>(s + "/saturation");
   unflatten(r.read<double>(s + "/load"), P.load, s + "/load");
+  const auto id = r.read<long long>(s + "/id");
+  P.id.assign(id.begin(), id.end());
   const std::size_t n = P.x.size();
   for (std::size_t m : {P.v.size(), P.C.size(), P.mass.size(), P.volume0.size(), P.F.size(), P.J.size(),
-                        P.log_jp.size(), P.saturation.size(), P.load.size()})
+                        P.log_jp.size(), P.saturation.size(), P.load.size(), P.id.size()})
     if (m != n) throw LibraryError("checkpoint species '" + s + "' has arrays of different lengths");
 }
 
@@ -69,14 +73,16 @@ void write_state(checkpoint::Writer& w, const Simulation<Dim>& sim, const RunPro
   const auto& o = sim.outflow();
   const auto& q = progress.outlet;
   const InletState inlet = sim.inlet() ? sim.inlet()->state() : InletState{};
-  std::vector<double> scalars{sim.time(),         o.water_mass,          o.soil_mass,
-                              progress.next_sample, progress.next_output, progress.smallest_dt,
-                              q.last_time,        q.last_water_mass,     q.last_soil_mass,
-                              q.peak_water_discharge, q.peak_time,       progress.initial_soil_volume,
-                              inlet.length,       inlet.mass};
+  std::vector<double> scalars{sim.time(),           o.water_mass,
+                              o.soil_mass,          progress.next_sample,
+                              progress.next_output, progress.smallest_dt,
+                              q.last_time,          q.last_water_mass,
+                              q.last_soil_mass,     q.peak_water_discharge,
+                              q.peak_time,          progress.initial_soil_volume,
+                              inlet.length,         inlet.mass};
   for (int d = 0; d < Dim; ++d) scalars.push_back(o.momentum[d]);
   w.write<double>("run/scalars", scalars);
-  std::vector<long long> counters{sim.steps(), progress.files, inlet.layers};
+  std::vector<long long> counters{sim.steps(), progress.files, inlet.layers, sim.water().next_id, sim.soil().next_id};
   w.write<long long>("run/counters", counters);
   // Limiter names and counts as "name=count" lines.
   std::string limiters;
@@ -93,7 +99,7 @@ void read_state(checkpoint::Reader& r, Simulation<Dim>& sim, RunProgress& progre
   read_species(r, "soil", sim.soil());
   const auto scalars = r.read<double>("run/scalars");
   const auto counters = r.read<long long>("run/counters");
-  if (scalars.size() != kScalars + Dim || counters.size() != 3)
+  if (scalars.size() != kScalars + Dim || counters.size() != 5)
     throw LibraryError("checkpoint run record has another layout than this build's");
   Outflow<Dim> o;
   o.water_mass = scalars[1], o.soil_mass = scalars[2];
@@ -104,6 +110,7 @@ void read_state(checkpoint::Reader& r, Simulation<Dim>& sim, RunProgress& progre
   progress.outlet = {scalars[6], scalars[7], scalars[8], scalars[9], scalars[10]};
   progress.initial_soil_volume = scalars[11];
   progress.files = counters[1];
+  sim.water().next_id = counters[3], sim.soil().next_id = counters[4];
   progress.limiters.clear();
   const auto bytes = r.read_bytes("run/limiters");
   const std::string text(reinterpret_cast<const char*>(bytes.data()), bytes.size());

@@ -31,13 +31,17 @@ void write_particles(const mpi::Comm& comm, const Simulation<Dim>& sim, const st
       scalar[p] = water ? sim.settings().water.eos.pressure(P.J[p]) : P.saturation[p];
     const std::string scalar_name = water ? "pressure" : "saturation";
     f.write_rows<double>(g + "/" + scalar_name, scalar);
+    const std::vector<long long> id(P.id.begin(), P.id.end());
+    f.write_rows<long long>(g + "/id", id);
     if (rows.total > 0)
       grids.push_back({name,
                        file_name,
                        io::XdmfTopology::polyvertex,
                        {"position", g + "/position", rows.total, 3},
                        {},
-                       {{"velocity", g + "/velocity", rows.total, 3}, {scalar_name, g + "/" + scalar_name, rows.total, 1}},
+                       {{"velocity", g + "/velocity", rows.total, 3},
+                        {scalar_name, g + "/" + scalar_name, rows.total, 1},
+                        {"id", g + "/id", rows.total, 1, "Int", 8}},
                        {}});
   };
   species("water", sim.water(), true);

@@ -67,8 +67,8 @@ double water_front(const Simulation<Dim>& sim, double half_spacing) {
 }
 
 constexpr const char* kSolver = "mpm2grid";
-constexpr long long kCheckpointFormat = 4;  // 2: inlet state, outlet record, initial soil volume; 3: block owners;
-                                            // 4: particle loads (surcharges)
+constexpr long long kCheckpointFormat = 5;  // 2: inlet state, outlet record, initial soil volume; 3: block owners;
+                                            // 4: particle loads (surcharges); 5: particle ids
 
 template <int Dim>
 class MpmRun {

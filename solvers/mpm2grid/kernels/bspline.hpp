@@ -5,10 +5,9 @@
 // touches the 4^Dim nodes base + k, k in {0..3}^Dim, base = floor(x_p / h) - 1 (grid origin at 0).
 // The weights are a partition of unity and reproduce linear functions (sum_i w_ip x_i = x_p),
 // which is what makes APIC's transfers conserve angular momentum.
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
-
-#include <Eigen/Core>
 
 namespace suite::mpm2grid {
 
@@ -48,8 +47,39 @@ inline double cubic_bspline_integral(double r) {
   return r < 0 ? 0.5 - half : 0.5 + half;
 }
 
+// The four weights N(r_k) and derivatives dN/dr(r_k) along one axis for a particle at xi (in
+// units of h) and the nodes base + k, base = floor(xi) - 1, k = 0..3, in closed form: with the
+// fraction f = xi - floor(xi) and g = 1 - f the distances are r_k = 1 + f, f, -g, -(1 + g), so
+//   N = g^3/6,  f^3/2 - f^2 + 2/3,  g^3/2 - g^2 + 2/3,  f^3/6
+//   dN/dr = -g^2/2,  3f^2/2 - 2f,  2g - 3g^2/2,  f^2/2
+// (the polynomials above without their branches). Returns base.
+inline int cubic_bspline_axis(double xi, double* w, double* dw) {
+  const double floor_xi = std::floor(xi), f = xi - floor_xi, g = 1 - f;
+  const double f2 = f * f, g2 = g * g;
+  w[0] = g2 * g * (1.0 / 6);
+  w[1] = 0.5 * f2 * f - f2 + 2.0 / 3;
+  w[2] = 0.5 * g2 * g - g2 + 2.0 / 3;
+  w[3] = f2 * f * (1.0 / 6);
+  dw[0] = -0.5 * g2;
+  dw[1] = 1.5 * f2 - 2 * f;
+  dw[2] = 2 * g - 1.5 * g2;
+  dw[3] = 0.5 * f2;
+  return static_cast<int>(floor_xi) - 1;
+}
+
+// The first node of the stencil of a particle at x (base = floor(x / h) - 1 per axis), as
+// Stencil and every transfer compute it (the same division, so the same node).
+template <int Dim>
+Index<Dim> stencil_base(const Eigen::Matrix<double, Dim, 1>& x, double h) {
+  Index<Dim> base;
+  for (int d = 0; d < Dim; ++d) base[d] = static_cast<int>(std::floor(x[d] / h)) - 1;
+  return base;
+}
+
 // APIC's inertia-like tensor for cubic B-splines is D = h^2 / 3 I, so D^-1 = 3 / h^2.
-inline double apic_inverse_d(double h) { return 3.0 / (h * h); }
+inline double apic_inverse_d(double h) {
+  return 3.0 / (h * h);
+}
 
 // The 4^Dim weights of one particle and their gradients (per metre).
 template <int Dim>
@@ -62,13 +92,8 @@ struct Stencil {
   // x in metres relative to the grid origin, h the node spacing.
   Stencil(const Vec<Dim>& x, double h) {
     for (int d = 0; d < Dim; ++d) {
-      const double xi = x[d] / h;
-      base[d] = static_cast<int>(std::floor(xi)) - 1;
-      for (int k = 0; k < 4; ++k) {
-        const double r = xi - (base[d] + k);
-        w[d][k] = cubic_bspline(r);
-        dw[d][k] = cubic_bspline_derivative(r) / h;
-      }
+      base[d] = cubic_bspline_axis(x[d] / h, w[d].data(), dw[d].data());
+      for (int k = 0; k < 4; ++k) dw[d][k] /= h;
     }
   }
 

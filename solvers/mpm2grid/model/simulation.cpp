@@ -5,10 +5,14 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <utility>
 
+#include "solvers/mpm2grid/grid/node_tile.hpp"
 #include "solvers/mpm2grid/transfer/apic.hpp"
+#include "solvers/mpm2grid/transfer/particle_order.hpp"
+#include "solvers/mpm2grid/transfer/stencil_rows.hpp"
 
 namespace suite::mpm2grid {
 
@@ -51,8 +55,17 @@ StepLimit Simulation<Dim>::stable_dt() const {
 template <int Dim>
 void Simulation<Dim>::build_grid() {
   grid_.clear();
-  touch_blocks(water_, grid_, &water_stencils_);
-  touch_blocks(soil_, grid_, &soil_stencils_);
+  // Each species' particles are put back in group order where they drifted from it (the
+  // transfers' speed; transfer/particle_order.hpp), the soil's known stresses with them.
+  std::vector<int> groups;
+  touch_blocks(water_, grid_, &groups);
+  if (const auto order = group_order(groups, grid_.blocks()); !order.empty())
+    water_.reorder([&](auto& values) { apply_order(values, order); });
+  touch_blocks(soil_, grid_, &groups);
+  if (const auto order = group_order(groups, grid_.blocks()); !order.empty()) {
+    soil_.reorder([&](auto& values) { apply_order(values, order); });
+    if (known_stress_.size() == soil_.size()) apply_order(known_stress_, order);
+  }
   if (dd_) dd_->prepare(grid_);  // adds blocks after these: the stencils' block indices stay valid
   water_nodes_.reset(grid_.nodes());
   soil_nodes_.reset(grid_.nodes());
@@ -84,8 +97,8 @@ void Simulation<Dim>::step(double dt) {
   if (dd_) dd_->balance(steps_, water_, soil_);
   build_grid();
   stresses();
-  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_, &water_stencils_);
-  particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_, {}, &soil_stencils_);
+  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_);
+  particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_);
   if (s_.loads) add_loads();
   if (dd_) dd_->sum_to_owners(soil_nodes_, water_nodes_);
   if (s_.mixture) solid_fractions();
@@ -139,15 +152,24 @@ void Simulation<Dim>::add_buoyancy() {
   if (dd_) dd_->copy_to_ghosts(p);
   buoyancy_.assign(grid_.nodes(), Vec<Dim>::Zero());
   const double solid = 1 - s_.soil.porosity;
-  StencilNodes<Dim> sn;
-  for (std::size_t q = 0; q < soil_.size(); ++q) {
-    sn.fill(grid_, soil_stencils_, q, true);
-    Vec<Dim> grad = Vec<Dim>::Zero();
-    for (int n = 0; n < sn.kNodes; ++n) grad += p[static_cast<std::size_t>(sn.slot[n])] * sn.gradient[n];
-    if (grad.isZero(0.0)) continue;
+  // Tile fields: 0 the node pressures (read), 1 .. Dim the buoyancy (added to).
+  using Tile = NodeTile<Dim, 1 + Dim>;
+  auto tile = std::make_unique<Tile>();
+  const auto enter = [&] {
+    tile->zero();
+    tile->for_each_node([&](int t, long slot) { tile->field(0)[t] = p[static_cast<std::size_t>(slot)]; });
+  };
+  const auto leave = [&] {
+    tile->for_each_node([&](int t, long slot) {
+      for (int d = 0; d < Dim; ++d) buoyancy_[static_cast<std::size_t>(slot)][d] += tile->field(1 + d)[t];
+    });
+  };
+  sweep_groups(soil_.x, grid_, *tile, enter, leave, [&](std::size_t q, const StencilRows<Dim>& st, int first) {
+    const Vec<Dim> grad = sample_field<false, true>(*tile, 0, st, first).gradient;
+    if (grad.isZero(0.0)) return;
     const Vec<Dim> force = -solid * soil_.volume0[q] * soil_.F[q].determinant() * grad;
-    for (int n = 0; n < sn.kNodes; ++n) buoyancy_[static_cast<std::size_t>(sn.slot[n])] += sn.weight[n] * force;
-  }
+    scatter_weighted(*tile, 1, force.data(), Dim, st, first);
+  });
   if (dd_) dd_->sum_to_owners(buoyancy_);
   for (std::size_t i = 0; i < grid_.nodes(); ++i) soil_nodes_.force[i] += buoyancy_[i];
 }
@@ -156,12 +178,15 @@ void Simulation<Dim>::add_buoyancy() {
 template <int Dim>
 void Simulation<Dim>::add_loads() {
   const double ramp = s_.load_ramp > 0 ? std::min(1.0, time_ / s_.load_ramp) : 1.0;
-  StencilNodes<Dim> sn;
+  std::array<long, BlockGrid<Dim>::kNodes> slots;
+  std::array<double, BlockGrid<Dim>::kNodes> weights;
   for (std::size_t q = 0; q < soil_.size(); ++q) {
     if (soil_.load[q].isZero(0.0)) continue;
-    sn.fill(grid_, soil_stencils_, q, false);
-    for (int n = 0; n < sn.kNodes; ++n)
-      soil_nodes_.force[static_cast<std::size_t>(sn.slot[n])] += sn.weight[n] * ramp * soil_.load[q];
+    const Stencil<Dim> st(soil_.x[q], s_.h);
+    grid_.stencil_slots(st, slots);
+    st.weights(weights);
+    for (int n = 0; n < BlockGrid<Dim>::kNodes; ++n)
+      soil_nodes_.force[static_cast<std::size_t>(slots[n])] += weights[n] * ramp * soil_.load[q];
   }
 }
 
@@ -183,18 +208,27 @@ void Simulation<Dim>::solid_fractions() {
 // species at the particles' positions at the step's start.
 template <int Dim>
 void Simulation<Dim>::mixture_volume_rates(double dt) {
-  StencilNodes<Dim> sn;
-  for (std::size_t p = 0; p < water_.size(); ++p) {
-    sn.fill(grid_, water_stencils_, p, true);
-    double phi = 0, div = 0;
-    for (int n = 0; n < sn.kNodes; ++n) {
-      const auto i = static_cast<std::size_t>(sn.slot[n]);
+  // Tile fields: 0 phi_s, 1 .. Dim the volume flux phi_s v_s + (1 - phi_s) v_w.
+  using Tile = NodeTile<Dim, 1 + Dim>;
+  auto tile = std::make_unique<Tile>();
+  const auto enter = [&] {
+    tile->zero();
+    tile->for_each_node([&](int t, long slot) {
+      const auto i = static_cast<std::size_t>(slot);
       const double f = solid_fraction_[i];
-      phi += sn.weight[n] * f;
-      div += (f * soil_nodes_.velocity[i] + (1 - f) * water_nodes_.velocity[i]).dot(sn.gradient[n]);
-    }
-    water_.J[p] *= 1 + dt * div / (1 - phi);
-  }
+      tile->field(0)[t] = f;
+      const Vec<Dim> flux = f * soil_nodes_.velocity[i] + (1 - f) * water_nodes_.velocity[i];
+      for (int d = 0; d < Dim; ++d) tile->field(1 + d)[t] = flux[d];
+    });
+  };
+  sweep_groups(
+      water_.x, grid_, *tile, enter, [] {},
+      [&](std::size_t p, const StencilRows<Dim>& st, int first) {
+        const double phi = sample_field<false, false>(*tile, 0, st, first).value;
+        double div = 0;
+        for (int d = 0; d < Dim; ++d) div += sample_field<false, true>(*tile, 1 + d, st, first).gradient[d];
+        water_.J[p] *= 1 + dt * div / (1 - phi);
+      });
 }
 
 template <int Dim>
@@ -205,14 +239,14 @@ void Simulation<Dim>::distribute() {
 template <int Dim>
 void Simulation<Dim>::update_particles(double dt) {
   const Mat<Dim> I = Mat<Dim>::Identity();
-  grid_to_particles(water_, grid_, water_nodes_, grad_v_, &water_stencils_);
+  grid_to_particles(water_, grid_, water_nodes_, grad_v_);
   if (s_.mixture) mixture_volume_rates(dt);
   for (std::size_t p = 0; p < water_.size(); ++p) {
     water_.x[p] += dt * water_.v[p];
     if (!s_.mixture) water_.J[p] *= 1 + dt * grad_v_[p].trace();
     s_.walls.clamp(water_.x[p]);
   }
-  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &soil_stencils_);
+  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_);
   known_stress_.resize(soil_.size());
   for (std::size_t p = 0; p < soil_.size(); ++p) {
     soil_.x[p] += dt * soil_.v[p];
@@ -231,25 +265,21 @@ void Simulation<Dim>::update_saturation() {
   if (soil_.size() == 0) return;
   const double h = s_.h, node_volume = std::pow(h, Dim);
   const double full = s_.water.density * node_volume * s_.soil.porosity;
-  // At the particles' new positions: their stencils may reach blocks that are not active (-1).
-  // Neighbouring particles mostly lie in the same blocks: those are looked up once. The
-  // stencils are kept for the next step's touch_blocks (this step's are used up).
-  std::array<long, BlockGrid<Dim>::kNodes> slots;
-  std::array<double, BlockGrid<Dim>::kNodes> weights;
-  typename BlockGrid<Dim>::Corners corners{};
-  Index<Dim> previous{};
-  soil_stencils_.resize(soil_.size());
-  for (std::size_t p = 0; p < soil_.size(); ++p) {
-    const Stencil<Dim>& st = soil_stencils_.update(p, soil_.x[p], h);
-    if (p == 0 || !BlockGrid<Dim>::same_blocks(st.base, previous)) grid_.stencil_corners(st, corners);
-    previous = st.base;
-    grid_.slots_from_corners(st, corners, slots);
-    st.weights(weights);
-    double phi = 0;
-    for (int n = 0; n < st.kNodes; ++n)
-      if (slots[n] >= 0) phi += weights[n] * water_nodes_.mass[static_cast<std::size_t>(slots[n])];
-    soil_.saturation[p] = std::clamp(phi / full, 0.0, 1.0);
-  }
+  // At the particles' new positions: their stencils may reach blocks that are not active, whose
+  // nodes hold no water.
+  using Tile = NodeTile<Dim, 1>;
+  auto tile = std::make_unique<Tile>();
+  const auto enter = [&] {
+    tile->zero();
+    tile->for_each_node(
+        [&](int t, long slot) { tile->field(0)[t] = water_nodes_.mass[static_cast<std::size_t>(slot)]; });
+  };
+  sweep_groups(
+      soil_.x, grid_, *tile, enter, [] {},
+      [&](std::size_t p, const StencilRows<Dim>& st, int first) {
+        const double phi = sample_field<false, false>(*tile, 0, st, first).value;
+        soil_.saturation[p] = std::clamp(phi / full, 0.0, 1.0);
+      });
 }
 
 template <int Dim>

@@ -193,7 +193,6 @@ class Simulation {
     Mat<Dim> F, tau;
   };
   std::vector<KnownStress> known_stress_;
-  ParticleStencils<Dim> water_stencils_, soil_stencils_;  // this step's stencils and blocks per particle
   std::optional<mpi::Comm> comm_;
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;
   SolveStats drag_stats_{};

@@ -3,6 +3,7 @@
 // seconds, kilograms; in 2D masses and volumes are per metre of thickness (kg/m, m^2).
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "solvers/mpm2grid/kernels/bspline.hpp"
@@ -11,17 +12,21 @@ namespace suite::mpm2grid {
 
 template <int Dim>
 struct Particles {
-  std::vector<Vec<Dim>> x;           // position, m
-  std::vector<Vec<Dim>> v;           // velocity, m/s
-  std::vector<Mat<Dim>> C;           // APIC affine velocity, 1/s
-  std::vector<double> mass;          // kg
-  std::vector<double> volume0;       // initial volume V_p^0, m^3
-  std::vector<Mat<Dim>> F;           // soil: elastic deformation gradient F_E (identity for water)
-  std::vector<double> J;             // water: volume ratio J = V / V^0 (1 for soil)
-  std::vector<double> log_jp;        // soil: Drucker-Prager volume correction, log of a volume ratio
-  std::vector<double> saturation;    // soil: water fraction seen from the water grid, [0, 1]
-  std::vector<Vec<Dim>> load;        // soil: external force at full load, N (a surcharge on the
-                                     // particles of a region's upper surface; zero elsewhere)
+  std::vector<Vec<Dim>> x;         // position, m
+  std::vector<Vec<Dim>> v;         // velocity, m/s
+  std::vector<Mat<Dim>> C;         // APIC affine velocity, 1/s
+  std::vector<double> mass;        // kg
+  std::vector<double> volume0;     // initial volume V_p^0, m^3
+  std::vector<Mat<Dim>> F;         // soil: elastic deformation gradient F_E (identity for water)
+  std::vector<double> J;           // water: volume ratio J = V / V^0 (1 for soil)
+  std::vector<double> log_jp;      // soil: Drucker-Prager volume correction, log of a volume ratio
+  std::vector<double> saturation;  // soil: water fraction seen from the water grid, [0, 1]
+  std::vector<Vec<Dim>> load;      // soil: external force at full load, N (a surcharge on the
+                                   // particles of a region's upper surface; zero elsewhere)
+  std::vector<std::int64_t> id;    // the particle's number, unique within its species over the
+                                   // run and kept wherever it goes (ParaView tracks particles by it)
+  std::int64_t next_id = 0;        // the number add() gives next (the particles are seeded and
+                                   // emitted on one rank; the others receive theirs)
 
   std::size_t size() const { return x.size(); }
 
@@ -36,6 +41,7 @@ struct Particles {
     log_jp.push_back(0.0);
     saturation.push_back(0.0);
     load.push_back(Vec<Dim>::Zero());
+    id.push_back(next_id++);
   }
 
   // Keeps the particles for which keep(p) is true, in order.
@@ -47,15 +53,25 @@ struct Particles {
       if (n != p) {
         x[n] = x[p], v[n] = v[p], C[n] = C[p], mass[n] = mass[p], volume0[n] = volume0[p];
         F[n] = F[p], J[n] = J[p], log_jp[n] = log_jp[p], saturation[n] = saturation[p], load[n] = load[p];
+        id[n] = id[p];
       }
       ++n;
     }
     x.resize(n), v.resize(n), C.resize(n), mass.resize(n), volume0.resize(n);
-    F.resize(n), J.resize(n), log_jp.resize(n), saturation.resize(n), load.resize(n);
+    F.resize(n), J.resize(n), log_jp.resize(n), saturation.resize(n), load.resize(n), id.resize(n);
   }
 
-  // A particle's whole state as kPacked doubles (for moving it to another rank), and back.
-  static constexpr int kPacked = 3 * Dim + 2 * Dim * Dim + 5;
+  // Puts the particles in a new order: permute(values) is called on each per-particle array and
+  // must apply one permutation to all of them.
+  template <class Permute>
+  void reorder(Permute&& permute) {
+    permute(x), permute(v), permute(C), permute(mass), permute(volume0);
+    permute(F), permute(J), permute(log_jp), permute(saturation), permute(load), permute(id);
+  }
+
+  // A particle's whole state as kPacked doubles (for moving it to another rank), and back (the id
+  // as a double: exact below 2^53).
+  static constexpr int kPacked = 3 * Dim + 2 * Dim * Dim + 6;
   void pack(std::size_t p, std::vector<double>& out) const {
     const auto put = [&](const double* a, int n) { out.insert(out.end(), a, a + n); };
     put(x[p].data(), Dim), put(v[p].data(), Dim), put(C[p].data(), Dim * Dim);
@@ -63,6 +79,7 @@ struct Particles {
     put(F[p].data(), Dim * Dim);
     out.insert(out.end(), {J[p], log_jp[p], saturation[p]});
     put(load[p].data(), Dim);
+    out.push_back(static_cast<double>(id[p]));
   }
   // Appends the particle packed at `in` (kPacked doubles).
   void add_packed(const double* in) {
@@ -83,6 +100,7 @@ struct Particles {
     Vec<Dim> lp;
     take(lp, Dim);
     load.push_back(lp);
+    id.push_back(static_cast<std::int64_t>(in[0]));
   }
 
   double total_mass() const {
