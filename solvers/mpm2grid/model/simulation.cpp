@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "solvers/mpm2grid/grid/node_tile.hpp"
+#include "solvers/mpm2grid/kernels/vector_clones.hpp"
 #include "solvers/mpm2grid/transfer/apic.hpp"
 #include "solvers/mpm2grid/transfer/particle_order.hpp"
 #include "solvers/mpm2grid/transfer/stencil_rows.hpp"
@@ -92,13 +93,19 @@ void Simulation<Dim>::stresses() {
   }
 }
 
+// The transfers below are compiled for the baseline and for AVX2 (kernels/vector_clones.hpp).
+template <int Dim>
+SUITE_VECTOR_CLONES void Simulation<Dim>::particles_to_grids() {
+  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_);
+  particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_);
+}
+
 template <int Dim>
 void Simulation<Dim>::step(double dt) {
   if (dd_) dd_->balance(steps_, water_, soil_);
   build_grid();
   stresses();
-  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_);
-  particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_);
+  particles_to_grids();
   if (s_.loads) add_loads();
   if (dd_) dd_->sum_to_owners(soil_nodes_, water_nodes_);
   if (s_.mixture) solid_fractions();
@@ -146,7 +153,7 @@ void Simulation<Dim>::solve_grid(double dt) {
 // The Archimedes force on the soil from the water grid's pressure (see the header). Every rank
 // of a decomposition takes part (the halo copies), with or without particles.
 template <int Dim>
-void Simulation<Dim>::add_buoyancy() {
+SUITE_VECTOR_CLONES void Simulation<Dim>::add_buoyancy() {
   auto& p = water_nodes_.pressure;
   for (std::size_t i = 0; i < grid_.nodes(); ++i) p[i] = water_nodes_.mass[i] > 0 ? p[i] / water_nodes_.mass[i] : 0.0;
   if (dd_) dd_->copy_to_ghosts(p);
@@ -207,7 +214,7 @@ void Simulation<Dim>::solid_fractions() {
 // The mixture's J update of the water (see the header), from the grid velocities of both
 // species at the particles' positions at the step's start.
 template <int Dim>
-void Simulation<Dim>::mixture_volume_rates(double dt) {
+SUITE_VECTOR_CLONES void Simulation<Dim>::mixture_volume_rates(double dt) {
   // Tile fields: 0 phi_s, 1 .. Dim the volume flux phi_s v_s + (1 - phi_s) v_w.
   using Tile = NodeTile<Dim, 1 + Dim>;
   auto tile = std::make_unique<Tile>();
@@ -237,7 +244,7 @@ void Simulation<Dim>::distribute() {
 }
 
 template <int Dim>
-void Simulation<Dim>::update_particles(double dt) {
+SUITE_VECTOR_CLONES void Simulation<Dim>::update_particles(double dt) {
   const Mat<Dim> I = Mat<Dim>::Identity();
   grid_to_particles(water_, grid_, water_nodes_, grad_v_);
   if (s_.mixture) mixture_volume_rates(dt);
@@ -261,7 +268,7 @@ void Simulation<Dim>::update_particles(double dt) {
 }
 
 template <int Dim>
-void Simulation<Dim>::update_saturation() {
+SUITE_VECTOR_CLONES void Simulation<Dim>::update_saturation() {
   if (soil_.size() == 0) return;
   const double h = s_.h, node_volume = std::pow(h, Dim);
   const double full = s_.water.density * node_volume * s_.soil.porosity;

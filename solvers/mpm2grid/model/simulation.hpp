@@ -65,9 +65,9 @@ struct WaterSettings {
 };
 
 struct SoilSettings {
-  double density = 2000;      // kg/m^3 of the soil skeleton's particles
-  double porosity = 0.4;      // n
-  double conductivity = 1e-4; // hydraulic conductivity k, m/s
+  double density = 2000;       // kg/m^3 of the soil skeleton's particles
+  double porosity = 0.4;       // n
+  double conductivity = 1e-4;  // hydraulic conductivity k, m/s
   HenckyDruckerPrager material;
 
   // The drag coefficient c_E = n^2 rho_w g0 / k (kg m^-3 s^-1). g0 is standard gravity, not the
@@ -87,8 +87,8 @@ struct SimulationSettings {
   WaterSettings water;
   SoilSettings soil;
   DragScheme drag = DragScheme::lumped;
-  double cfl = 0.4;        // fraction of a cell a particle or a wave may cross per step
-  double dt_max = 1e-3;    // s
+  double cfl = 0.4;                         // fraction of a cell a particle or a wave may cross per step
+  double dt_max = 1e-3;                     // s
   std::optional<InletSettings<Dim>> inlet;  // water inlet on the x_low side, if any
   DecompositionSettings decomposition;      // load checks and rebalancing over several ranks
   bool buoyancy = true;                     // the water's pressure acts on the soil skeleton
@@ -169,6 +169,7 @@ class Simulation {
  private:
   void build_grid();
   void stresses();
+  void particles_to_grids();
   void update_particles(double dt);
   void update_saturation();
   void remove_outflow();
@@ -185,7 +186,7 @@ class Simulation {
   std::vector<Mat<Dim>> water_tau_, soil_tau_, grad_v_;
   std::vector<double> soil_drag_, water_pressure_;
   std::vector<double> solid_fraction_;  // mixture: phi_s per node slot
-  std::vector<Vec<Dim>> buoyancy_;  // per node slot, N
+  std::vector<Vec<Dim>> buoyancy_;      // per node slot, N
   // Per soil particle, a Kirchhoff stress the return mapping had at hand and the F_E it belongs
   // to: the next stresses() takes it where the particle's F_E is still exactly that one.
   struct KnownStress {
@@ -203,7 +204,8 @@ class Simulation {
   long long steps_ = 0;
 };
 
-extern template class Simulation<2>;
-extern template class Simulation<3>;
+// Simulation<2> and Simulation<3> are instantiated in simulation.cpp, where the members are
+// defined. (No `extern template` here: GCC makes no target clones, kernels/vector_clones.hpp, of
+// members of a class that was declared extern before their definition.)
 
 }  // namespace suite::mpm2grid
