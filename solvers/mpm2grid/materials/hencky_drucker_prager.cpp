@@ -32,6 +32,8 @@ HenckyDruckerPrager HenckyDruckerPrager::from_young(double young, double poisson
   m.mu = young / (2 * (1 + poisson));
   m.lambda = young * poisson / ((1 + poisson) * (1 - 2 * poisson));
   m.friction_angle = friction_angle;
+  m.sin_friction = std::sin(friction_angle);
+  m.cos_friction = std::cos(friction_angle);
   m.cohesion = cohesion;
   m.volume_correction = volume_correction;
   return m;
@@ -47,14 +49,14 @@ double HenckyDruckerPrager::p_wave_speed(double density) const {
 
 template <int Dim>
 Matrix<Dim> HenckyDruckerPrager::kirchhoff(const Matrix<Dim>& F_E) const {
-  return kirchhoff<Dim>(rotation_svd<Dim>(F_E));
+  const LeftStretch<Dim> b = left_stretch<Dim>(F_E);
+  return kirchhoff<Dim>(b.U, b.log_sigma);
 }
 
 template <int Dim>
-Matrix<Dim> HenckyDruckerPrager::kirchhoff(const RotationSvd<Dim>& svd) const {
-  const Vector<Dim> eps = svd.sigma.array().log().matrix();
+Matrix<Dim> HenckyDruckerPrager::kirchhoff(const Matrix<Dim>& U, const Vector<Dim>& eps) const {
   const Vector<Dim> principal = (2 * mu * eps.array() + lambda * eps.sum()).matrix();
-  return svd.U * principal.asDiagonal() * svd.U.transpose();
+  return U * principal.asDiagonal() * U.transpose();
 }
 
 template <int Dim>
@@ -106,9 +108,9 @@ StrainReturn<Dim> HenckyDruckerPrager::return_strain(const Vector<Dim>& eps_tria
 
 template <int Dim>
 ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const {
-  const RotationSvd<Dim> svd = rotation_svd<Dim>(F_trial);
+  const LeftStretch<Dim> b = left_stretch<Dim>(F_trial);
   const double shift = volume_correction ? log_jp : 0.0;  // log-volume added to the trial strain
-  const Vector<Dim> eps = (svd.sigma.array().log() + shift / Dim).matrix();
+  const Vector<Dim> eps = (b.log_sigma.array() + shift / Dim).matrix();
   const StrainReturn<Dim> r = return_strain<Dim>(eps, saturation);
 
   ReturnResult<Dim> out;
@@ -118,9 +120,11 @@ ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, doubl
     // U exp(eps + shift/Dim) V^T = exp(shift/Dim) F_trial: no SVD round-off.
     out.F = shift == 0 ? F_trial : (std::exp(shift / Dim) * F_trial).eval();
     out.has_stress = shift == 0;
-    if (out.has_stress) out.stress = kirchhoff<Dim>(svd);
+    if (out.has_stress) out.stress = kirchhoff<Dim>(b.U, b.log_sigma);
   } else {
-    out.F = svd.U * r.eps.array().exp().matrix().asDiagonal() * svd.V.transpose();
+    // U exp(eps_new) V^T with V^T = diag(1 / sigma) U^T F_trial.
+    const Vector<Dim> stretch = (r.eps - b.log_sigma).array().exp().matrix();
+    out.F = b.U * stretch.asDiagonal() * b.U.transpose() * F_trial;
   }
   // log_jp <- tr(eps shifted) - tr(eps new): exactly 0 for elastic and cone returns (trace
   // kept), the removed volume for the apex.

@@ -12,7 +12,9 @@
 //   psi = mu tr(eps^2) + lambda/2 (tr eps)^2               energy per reference volume, J/m^3
 //   tau = U diag(2 mu eps + lambda tr(eps) 1) U^T         Kirchhoff stress, Pa
 //   P   = dpsi/dF_E = tau F_E^-T = U diag((2 mu eps_i + lambda tr eps) / sigma_i) V^T   Pa
-// tau is linear in eps, so the return mapping below is exact (no iteration).
+// tau is linear in eps, so the return mapping below is exact (no iteration). kirchhoff() and
+// project() need only U and sigma, which left_stretch() (materials/polar_svd.hpp) gives faster
+// than a full SVD in 3D (from F F^T = U diag(sigma^2) U^T), and V^T = diag(1/sigma) U^T F.
 //
 // Plasticity (compression positive). With bulk modulus K = lambda + 2 mu / Dim and
 //   p = -K tr(eps)                       pressure, Pa  (= -tr(tau) / Dim)
@@ -26,7 +28,8 @@
 // which is Mohr-Coulomb in the plane exactly: with two principal stresses q = (sqrt(3)/2)
 // |s1 - s2| and p = (s1 + s2)/2, so q <= M p + q_c reads |s1 - s2| / 2 <= p sin(phi_f) +
 // c cos(phi_f). (The 3D constants in 2D would give sin(phi_2D) = M / sqrt(3): a scene's 30 deg
-// would stand as 43.9 deg, and slopes showed it.) The cone's tip (apex) is at p = -q_c / M, i.e. tr(eps) = q_c / (M K) >= 0.
+// would stand as 43.9 deg, and slopes showed it.) The cone's tip (apex) is at p = -q_c / M,
+// i.e. tr(eps) = q_c / (M K) >= 0.
 // Return mapping of a trial strain (non-associative, zero dilatancy):
 //   apex     if M p_tr + q_c <= 0: eps = (q_c / (M K Dim)) 1, the tip (c = 0: eps = 0, F_E a
 //            rotation, tau = 0: separated grains carry no stress);
@@ -96,7 +99,7 @@ struct ReturnResult {
   ReturnCase kind = ReturnCase::elastic;  // which branch of the return mapping was taken
   double plastic_strain = 0;              // |eps_tr - eps_new| (Frobenius, log strain) removed
   // kirchhoff(F), when project() had it at hand: an elastic return without a volume shift keeps
-  // F = F_trial, whose SVD it has computed anyway (has_stress false otherwise).
+  // F = F_trial, whose stretches it has computed anyway (has_stress false otherwise).
   bool has_stress = false;
   Matrix<Dim> stress;
 };
@@ -122,6 +125,8 @@ struct HenckyDruckerPrager {
   double mu = 0;              // shear modulus, Pa
   double lambda = 0;          // first Lame parameter, Pa
   double friction_angle = 0;  // phi_f, rad, in [0, pi/2)
+  double sin_friction = 0;    // sin(phi_f) and cos(phi_f), set with it by from_young() (the
+  double cos_friction = 1;    // return mapping needs them for every particle and step)
   double cohesion = 0;        // c0 of dry soil, Pa (stress-space form, see q_c above)
   bool volume_correction = true;
 
@@ -138,7 +143,7 @@ struct HenckyDruckerPrager {
   // M: 6 sin(phi_f) / (3 - sin(phi_f)) in 3D, sqrt(3) sin(phi_f) in 2D; dimensionless.
   template <int Dim>
   double friction_slope() const {
-    const double s = std::sin(friction_angle);
+    const double s = sin_friction;
     return Dim == 2 ? std::sqrt(3.0) * s : 6 * s / (3 - s);
   }
   // c(S) = c0 (1 - clamp(S, 0, 1)), Pa.
@@ -146,8 +151,8 @@ struct HenckyDruckerPrager {
   // q_c(S): 6 c(S) cos(phi_f) / (3 - sin(phi_f)) in 3D, sqrt(3) c(S) cos(phi_f) in 2D; Pa.
   template <int Dim>
   double cohesion_intercept(double saturation) const {
-    const double c = cohesion_at(saturation) * std::cos(friction_angle);
-    return Dim == 2 ? std::sqrt(3.0) * c : 6 * c / (3 - std::sin(friction_angle));
+    const double c = cohesion_at(saturation) * cos_friction;
+    return Dim == 2 ? std::sqrt(3.0) * c : 6 * c / (3 - sin_friction);
   }
   // P-wave speed sqrt((lambda + 2 mu) / rho), m/s, rho in kg/m^3: the fastest elastic wave,
   // for the time-step limit.
@@ -169,17 +174,17 @@ struct HenckyDruckerPrager {
   // The return mapping on principal strains (no volume correction): apex, elastic or cone.
   template <int Dim>
   StrainReturn<Dim> return_strain(const Vector<Dim>& eps_trial, double saturation) const;
-  // The full plastic step of one particle: SVD of the trial F_E, volume-correction shift,
-  // return mapping with the cohesion of `saturation`, F_E = U exp(eps_new) V^T, new log_jp.
-  // An elastic return gives back F_trial itself (times exp(log_jp / Dim) when the volume
-  // correction has something stored), with no SVD round-off.
+  // The full plastic step of one particle: principal stretches of the trial F_E (left_stretch),
+  // volume-correction shift, return mapping with the cohesion of `saturation`, F_E = U
+  // exp(eps_new) V^T, new log_jp. An elastic return gives back F_trial itself (times
+  // exp(log_jp / Dim) when the volume correction has something stored), with no round-off.
   template <int Dim>
   ReturnResult<Dim> project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const;
 
  private:
-  // Kirchhoff stress of the F_E with this SVD.
+  // Kirchhoff stress of principal Hencky strains eps along the columns of U.
   template <int Dim>
-  Matrix<Dim> kirchhoff(const RotationSvd<Dim>& svd) const;
+  Matrix<Dim> kirchhoff(const Matrix<Dim>& U, const Vector<Dim>& eps) const;
 };
 
 // The dry cohesion c0 (Pa) of the stress-space cone above equivalent to a strain-space cohesion
