@@ -75,11 +75,14 @@ void Simulation<Dim>::build_grid() {
 // Kirchhoff stresses and the soil's drag coefficients c_E V_p.
 template <int Dim>
 void Simulation<Dim>::stresses() {
+  // tau = -J p I (WeaklyCompressibleWater::kirchhoff), from the one pressure the buoyancy uses too.
   water_tau_.resize(water_.size());
-  for (std::size_t p = 0; p < water_.size(); ++p) water_tau_[p] = s_.water.eos.template kirchhoff<Dim>(water_.J[p]);
-  water_pressure_.clear();
-  if (s_.buoyancy)
-    for (std::size_t p = 0; p < water_.size(); ++p) water_pressure_.push_back(s_.water.eos.pressure(water_.J[p]));
+  water_pressure_.resize(s_.buoyancy ? water_.size() : 0);
+  for (std::size_t p = 0; p < water_.size(); ++p) {
+    const double pressure = s_.water.eos.pressure(water_.J[p]);
+    water_tau_[p] = -water_.J[p] * pressure * Mat<Dim>::Identity();
+    if (s_.buoyancy) water_pressure_[p] = pressure;
+  }
   soil_tau_.resize(soil_.size());
   soil_drag_.resize(soil_.size());
   const double c_e = s_.soil.drag_coefficient(s_.water.density);
