@@ -16,9 +16,7 @@ namespace suite::mpm2grid {
 
 template <int Dim>
 Index<Dim> DomainDecomposition<Dim>::home(const Vec<Dim>& x) const {
-  Index<Dim> node;
-  for (int d = 0; d < Dim; ++d) node[d] = static_cast<int>(std::floor(x[d] / h_));
-  return BlockGrid<Dim>::block_holding(node);
+  return BlockGrid<Dim>::home_block(x, h_);
 }
 
 template <int Dim>
@@ -207,8 +205,7 @@ void DomainDecomposition<Dim>::partition(const Particles<Dim>& water, const Part
     }
   comm_.broadcast(problem);
   if (!problem.empty()) throw LibraryError("partitioning the grid blocks: " + problem);
-  if (!ranks.empty())
-    SUITE_MPI_CHECK(MPI_Bcast(ranks.data(), static_cast<int>(ranks.size()), MPI_INT, 0, comm_.raw()));
+  if (!ranks.empty()) SUITE_MPI_CHECK(MPI_Bcast(ranks.data(), static_cast<int>(ranks.size()), MPI_INT, 0, comm_.raw()));
   owners_.assign(keys, ranks);
 }
 

@@ -86,9 +86,10 @@ class BlockGrid {
   }
   // A particle's home block: the block holding the lower corner floor(x / h) of its cell, a node
   // of its stencil. The rank owning that block owns the particle (decomposition/).
-  Index<Dim> home_block(const Vec<Dim>& x) const {
+  Index<Dim> home_block(const Vec<Dim>& x) const { return home_block(x, h_); }
+  static Index<Dim> home_block(const Vec<Dim>& x, double h) {
     Index<Dim> node;
-    for (int d = 0; d < Dim; ++d) node[d] = static_cast<int>(std::floor(x[d] / h_));
+    for (int d = 0; d < Dim; ++d) node[d] = static_cast<int>(std::floor(in_cells(x[d], h)));
     return block_holding(node);
   }
   // A block's key, unique per coordinates, and back.

@@ -67,12 +67,19 @@ inline int cubic_bspline_axis(double xi, double* w, double* dw) {
   return static_cast<int>(floor_xi) - 1;
 }
 
+// A coordinate in units of the grid spacing, x * (1 / h). Every stencil, transfer and home block
+// computes it this one way, so that they agree on the node below a particle; a multiplication,
+// as it runs for every particle in every transfer.
+inline double in_cells(double x, double h) {
+  return x * (1 / h);
+}
+
 // The first node of the stencil of a particle at x (base = floor(x / h) - 1 per axis), as
-// Stencil and every transfer compute it (the same division, so the same node).
+// Stencil and every transfer compute it.
 template <int Dim>
 Index<Dim> stencil_base(const Eigen::Matrix<double, Dim, 1>& x, double h) {
   Index<Dim> base;
-  for (int d = 0; d < Dim; ++d) base[d] = static_cast<int>(std::floor(x[d] / h)) - 1;
+  for (int d = 0; d < Dim; ++d) base[d] = static_cast<int>(std::floor(in_cells(x[d], h))) - 1;
   return base;
 }
 
@@ -92,7 +99,7 @@ struct Stencil {
   // x in metres relative to the grid origin, h the node spacing.
   Stencil(const Vec<Dim>& x, double h) {
     for (int d = 0; d < Dim; ++d) {
-      base[d] = cubic_bspline_axis(x[d] / h, w[d].data(), dw[d].data());
+      base[d] = cubic_bspline_axis(in_cells(x[d], h), w[d].data(), dw[d].data());
       for (int k = 0; k < 4; ++k) dw[d][k] /= h;
     }
   }

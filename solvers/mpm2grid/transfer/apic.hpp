@@ -33,7 +33,7 @@ void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, std::ve
     const Index<Dim> base = stencil_base(particles.x[p], h);
     // Neighbouring particles mostly lie in the same blocks as the one before them: then those
     // blocks are active and their indices known, without looking them up.
-    if (p == 0 || !BlockGrid<Dim>::same_blocks(base, previous)) grid.touch(base, corners);
+    if (p == 0 || (base != previous && !BlockGrid<Dim>::same_blocks(base, previous))) grid.touch(base, corners);
     previous = base;
     if (groups) (*groups)[p] = corners[0];  // corner 0: the block of the stencil's first node
   }

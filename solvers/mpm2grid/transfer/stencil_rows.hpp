@@ -32,11 +32,11 @@ struct StencilRows {
   double wo[kCross][kRows];   // W_r (y_j - y_p)[, W_r (z_k - z_p)], m
 
   StencilRows(const Vec<Dim>& x, double h) {
-    // x / h as in stencil_base(), so that the first node is the one touch_blocks() activated for.
+    // in_cells() as in stencil_base(): the first node is the one touch_blocks() activated for.
     const double inv_h = 1 / h;
     double a[Dim][4], da[Dim][4], o[Dim][4];
     for (int d = 0; d < Dim; ++d) {
-      base[d] = cubic_bspline_axis(x[d] / h, a[d], da[d]);
+      base[d] = cubic_bspline_axis(in_cells(x[d], h), a[d], da[d]);
       for (int k = 0; k < 4; ++k) {
         da[d][k] *= inv_h;
         o[d][k] = (base[d] + k) * h - x[d];
