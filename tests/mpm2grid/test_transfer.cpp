@@ -5,6 +5,7 @@
 // lose about 1e-14 relative, so 1e-12 leaves a margin of a hundred.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "solvers/mpm2grid/boundary/walls.hpp"
@@ -56,6 +57,22 @@ TYPED_TEST(Transfer, WeightsArePartitionOfUnityReproduceLinearFunctionsAndHaveCo
     EXPECT_LT((x_grad - Mat<Dim>::Identity()).norm(), kRoundOff);
     // APIC's D_p = sum_i w_ip (x_i - x_p)(x_i - x_p)^T = h^2 / 3 I for cubic B-splines.
     EXPECT_LT((second - h * h / 3 * Mat<Dim>::Identity()).norm(), kRoundOff * h * h);
+  }
+}
+
+// The branch-free weights per axis (cubic_bspline_axis) against the spec's piecewise N(r) and
+// dN/dr at the four distances, over the cell and at its ends (a few operations on O(1) values:
+// 1e-15).
+TEST(BsplineAxis, ClosedFormEqualsThePiecewiseKernel) {
+  for (double xi : {-3.0, -2.75, -0.5, -1e-12, 0.0, 1e-12, 0.25, 0.5, 0.999999, 1.0, 7.3, 1e3 + 0.1}) {
+    double w[4], dw[4];
+    const int base = cubic_bspline_axis(xi, w, dw);
+    EXPECT_EQ(base, static_cast<int>(std::floor(xi)) - 1);
+    for (int k = 0; k < 4; ++k) {
+      const double r = xi - (base + k);
+      EXPECT_NEAR(w[k], cubic_bspline(r), 1e-15) << "xi = " << xi << ", k = " << k;
+      EXPECT_NEAR(dw[k], cubic_bspline_derivative(r), 1e-15) << "xi = " << xi << ", k = " << k;
+    }
   }
 }
 

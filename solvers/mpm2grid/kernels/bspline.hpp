@@ -109,8 +109,8 @@ struct Stencil {
   // Node n's corner index along axis d (n in for_each order, x fastest).
   static constexpr int corner_index(int n, int d) { return (n >> (2 * d)) & 3; }
 
-  // Every node's weight and gradient, in for_each order: the same values as weight() and
-  // gradient(), computed in the same order, for loops over the nodes.
+  // Every node's weight, in for_each order: the same values as weight(), computed in the same
+  // order, for loops over the nodes.
   void weights(std::array<double, kNodes>& out) const {
     for (int n = 0; n < kNodes; ++n) {
       double v = w[0][corner_index(n, 0)];
@@ -118,16 +118,6 @@ struct Stencil {
       out[n] = v;
     }
   }
-  void gradients(std::array<Vec<Dim>, kNodes>& out) const {
-    for (int n = 0; n < kNodes; ++n)
-      for (int d = 0; d < Dim; ++d) {
-        double v = dw[d][corner_index(n, d)];
-        for (int e = 0; e < Dim; ++e)
-          if (e != d) v *= w[e][corner_index(n, e)];
-        out[n][d] = v;
-      }
-  }
-
   double weight(const Index<Dim>& k) const {
     double v = 1;
     for (int d = 0; d < Dim; ++d) v *= w[d][k[d]];

@@ -67,7 +67,7 @@ void Simulation<Dim>::build_grid() {
     soil_.reorder([&](auto& values) { apply_order(values, order); });
     if (known_stress_.size() == soil_.size()) apply_order(known_stress_, order);
   }
-  if (dd_) dd_->prepare(grid_);  // adds blocks after these: the stencils' block indices stay valid
+  if (dd_) dd_->prepare(grid_);  // adds the halo blocks after these
   water_nodes_.reset(grid_.nodes());
   soil_nodes_.reset(grid_.nodes());
 }
