@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <Eigen/Geometry>  // AngleAxis
 #include <Eigen/LU>        // inverse()
 #include <algorithm>
@@ -123,6 +122,49 @@ TYPED_TEST(RotationSvdTest, InvertedElementPutsTheSignOnTheSmallestValue) {
   EXPECT_NEAR(s.V.determinant(), 1.0, 1e-12);
   EXPECT_NEAR(s.sigma(Dim - 1), -0.5, 1e-12);  // the reflection lands on the smallest value
   for (int i = 0; i + 1 < Dim; ++i) EXPECT_GT(s.sigma(i), 0.0);
+}
+
+// left_stretch (closed form in 2D, Eigen's symmetric eigen-solver in 3D) against the SVD: the same
+// log-stretches, and U diag(f(log sigma)) U^T (how the Hencky model uses U) the same for a
+// function f that tells the stretches apart; U orthonormal. Cases: the SVD test's, plus equal
+// stretches (exactly and to 1e-9, where eigenvectors are ill-defined but U (.) U^T is not), a
+// strongly anisotropic F and a nearly flattened one. Both are backward stable: 1e-12 as above.
+// An inverted F gives NaN log-stretches, as the SVD's negative value does.
+TYPED_TEST(RotationSvdTest, LeftStretchAgreesWithTheSvd) {
+  constexpr int Dim = TypeParam::value;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Matrix<Dim> R = random_rotation<Dim>(rng), Q = random_rotation<Dim>(rng);
+  std::vector<Matrix<Dim>> cases = {Matrix<Dim>::Identity(), 2.5 * Matrix<Dim>::Identity(), R, 1.1 * R};
+  Vector<Dim> sv = Vector<Dim>::Constant(1.0);
+  sv(0) = 1 + 1e-9;
+  cases.push_back(R * sv.asDiagonal() * Q.transpose());
+  sv = Vector<Dim>::LinSpaced(Dim, 3.0, 0.2);
+  cases.push_back(R * sv.asDiagonal() * Q.transpose());
+  sv(Dim - 1) = 1e-3;
+  cases.push_back(R * sv.asDiagonal() * Q.transpose());
+  for (int k = 0; k < 40; ++k) {
+    Matrix<Dim> F = Matrix<Dim>::Identity() + (k < 20 ? 0.6 : 1e-4) * Matrix<Dim>::NullaryExpr([&] { return u(rng); });
+    if (F.determinant() < 0) F.col(0) *= -1;
+    cases.push_back(F);
+  }
+  const auto f = [](const Vector<Dim>& e) { return Vector<Dim>((2 * e.array() + 0.7 * e.sum()).matrix()); };
+  for (const Matrix<Dim>& F : cases) {
+    const RotationSvd<Dim> svd = rotation_svd<Dim>(F);
+    const LeftStretch<Dim> s = left_stretch<Dim>(F);
+    const Vector<Dim> log_svd = svd.sigma.array().log().matrix();
+    std::vector<double> a(log_svd.data(), log_svd.data() + Dim), b(s.log_sigma.data(), s.log_sigma.data() + Dim);
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    for (int i = 0; i < Dim; ++i) EXPECT_NEAR(b[i], a[i], 1e-12) << F;
+    EXPECT_LE((s.U.transpose() * s.U - Matrix<Dim>::Identity()).norm(), 1e-12);
+    const Matrix<Dim> A = svd.U * f(log_svd).asDiagonal() * svd.U.transpose();
+    const Matrix<Dim> B = s.U * f(s.log_sigma).asDiagonal() * s.U.transpose();
+    EXPECT_LE((A - B).norm(), 1e-12 * std::max(1.0, A.norm())) << F;
+  }
+  Matrix<Dim> inverted = R;
+  inverted.col(0) *= -1;
+  EXPECT_TRUE(left_stretch<Dim>(inverted).log_sigma.hasNaN());
 }
 
 // ---------------------------------------------------------------------------------------------
