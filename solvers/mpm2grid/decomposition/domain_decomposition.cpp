@@ -100,22 +100,42 @@ void DomainDecomposition<Dim>::sum_to_owners(std::vector<Vec<Dim>>& per_slot) {
 template <int Dim>
 void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& soil) {
   using Key = BlockOwners::Key;
+  // Particles in group order (transfer/particle_order.hpp) come in runs with one home block:
+  // its owner is looked up once a run.
+  Key last_key = 0;
+  int last_owner = -1;
+  bool looked_up = false;
+  const auto owner_of = [&](const Vec<Dim>& x) {
+    const Key key = BlockGrid<Dim>::key(home(x));
+    if (!looked_up || key != last_key) last_key = key, last_owner = owners_.owner(key), looked_up = true;
+    return last_owner;
+  };
+  // Each particle's destination, the owner of its home block; blocks without one yet are claimed
+  // first (every rank takes part), then their particles are looked up again.
+  std::array<std::vector<int>, 2> destinations;
   std::vector<Key> unowned;
-  for (const auto* P : {&water, &soil})
-    for (const auto& x : P->x) {
-      const Key key = BlockGrid<Dim>::key(home(x));
-      if (owners_.owner(key) < 0) unowned.push_back(key);
-    }
+  const std::array<Particles<Dim>*, 2> species{&water, &soil};
+  for (std::size_t k = 0; k < 2; ++k) {
+    auto& destination = destinations[k];
+    destination.resize(species[k]->size());
+    for (std::size_t p = 0; p < destination.size(); ++p)
+      if ((destination[p] = owner_of(species[k]->x[p])) < 0) unowned.push_back(last_key);
+  }
   std::sort(unowned.begin(), unowned.end());
   unowned.erase(std::unique(unowned.begin(), unowned.end()), unowned.end());
   stats_.claimed_blocks += owners_.claim(comm_, unowned);
+  looked_up = false;  // the claims gave owners to blocks that had none
+  if (!unowned.empty())
+    for (std::size_t k = 0; k < 2; ++k)
+      for (std::size_t p = 0; p < destinations[k].size(); ++p)
+        if (destinations[k][p] < 0) destinations[k][p] = owner_of(species[k]->x[p]);
 
   const auto ranks = static_cast<std::size_t>(comm_.size());
-  for (auto* P : {&water, &soil}) {
+  for (std::size_t sp = 0; sp < 2; ++sp) {
+    Particles<Dim>* P = species[sp];
+    const std::vector<int>& destination = destinations[sp];
     std::vector<std::vector<double>> send(ranks);
-    std::vector<int> destination(P->size());
     for (std::size_t p = 0; p < P->size(); ++p) {
-      destination[p] = owners_.owner(BlockGrid<Dim>::key(home(P->x[p])));
       if (destination[p] == comm_.rank()) continue;
       P->pack(p, send[static_cast<std::size_t>(destination[p])]);
       ++stats_.migrated;
