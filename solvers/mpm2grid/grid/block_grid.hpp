@@ -45,10 +45,9 @@ class BlockGrid {
   void touch(const Index<Dim>& base, Corners& corners) {
     for_stencil_blocks(base, [&](int corner, const Index<Dim>& b) { corners[corner] = activate(b); });
   }
-  void touch(const Stencil<Dim>& s, Corners& corners) { touch(s.base, corners); }
   void touch(const Stencil<Dim>& s) {
     Corners corners;
-    touch(s, corners);
+    touch(s.base, corners);
   }
 
   // True when the stencils with these bases (Stencil::base) lie in the same blocks, so that they

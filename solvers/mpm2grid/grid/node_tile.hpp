@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 
@@ -27,7 +28,6 @@ class NodeTile {
   static constexpr int kSide = 2 * Grid::kSide;         // 8 nodes per axis
   static constexpr int kSize = Dim == 2 ? 64 : 512;     // nodes per field
   static constexpr int kBlocks = Grid::kStencilBlocks;  // 2^Dim blocks
-  static constexpr int kRows = Dim == 2 ? 4 : 16;       // rows along x of a stencil
   static_assert(Fields >= 1);
 
   // The group of a stencil whose first node is `base`.
@@ -45,9 +45,9 @@ class NodeTile {
   // stencil's first tile index.
   static constexpr int row_offset(int r) { return Dim == 2 ? kSide * r : kSide * (r & 3) + kSide * kSide * (r >> 2); }
 
-  // True when the tile is covering group g.
+  // True when the tile is covering some group, and group g.
+  bool covering() const { return covering_; }
   bool covers(const Index<Dim>& g) const { return covering_ && g == group_; }
-  const Index<Dim>& group() const { return group_; }
 
   // Covers group g: finds its 2^Dim blocks in the grid (a block that is not active: -1, its
   // nodes neither read nor written). The values are left as they were (zero() or gather()).
@@ -64,6 +64,11 @@ class NodeTile {
   void release() { covering_ = false; }
 
   void zero() { std::fill(data_.begin(), data_.end(), 0.0); }
+  // Zeroes the tile and copies values[slot] of the covered blocks' nodes into field f.
+  void gather(int f, const std::vector<double>& values) {
+    zero();
+    for_each_node([&](int t, long slot) { field(f)[t] = values[static_cast<std::size_t>(slot)]; });
+  }
   double* field(int f) { return data_.data() + f * kSize; }
   const double* field(int f) const { return data_.data() + f * kSize; }
 

@@ -165,10 +165,7 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::add_buoyancy() {
   // Tile fields: 0 the node pressures (read), 1 .. Dim the buoyancy (added to).
   using Tile = NodeTile<Dim, 1 + Dim>;
   auto tile = std::make_unique<Tile>();
-  const auto enter = [&] {
-    tile->zero();
-    tile->for_each_node([&](int t, long slot) { tile->field(0)[t] = p[static_cast<std::size_t>(slot)]; });
-  };
+  const auto enter = [&] { tile->gather(0, p); };
   const auto leave = [&] {
     tile->for_each_node([&](int t, long slot) {
       for (int d = 0; d < Dim; ++d) buoyancy_[static_cast<std::size_t>(slot)][d] += tile->field(1 + d)[t];
@@ -279,11 +276,7 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::update_saturation() {
   // nodes hold no water.
   using Tile = NodeTile<Dim, 1>;
   auto tile = std::make_unique<Tile>();
-  const auto enter = [&] {
-    tile->zero();
-    tile->for_each_node(
-        [&](int t, long slot) { tile->field(0)[t] = water_nodes_.mass[static_cast<std::size_t>(slot)]; });
-  };
+  const auto enter = [&] { tile->gather(0, water_nodes_.mass); };
   sweep_groups(
       soil_.x, grid_, *tile, enter, [] {},
       [&](std::size_t p, const StencilRows<Dim>& st, int first) {

@@ -185,19 +185,17 @@ void sweep_groups(const std::vector<Vec<Dim>>& x, const BlockGrid<Dim>& grid, No
   using Tile = NodeTile<Dim, Fields>;
   const double h = grid.spacing();
   tile.release();
-  bool covering = false;
   for (std::size_t p = 0; p < x.size(); ++p) {
     const StencilRows<Dim> s(x[p], h);
     const Index<Dim> g = Tile::group_of(s.base);
     if (!tile.covers(g)) {
-      if (covering) leave();
+      if (tile.covering()) leave();
       tile.cover(grid, g);
-      covering = true;
       enter();
     }
     body(p, s, Tile::first_index(s.base, g));
   }
-  if (covering) leave();
+  if (tile.covering()) leave();
 }
 
 }  // namespace suite::mpm2grid
