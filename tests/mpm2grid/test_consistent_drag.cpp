@@ -77,8 +77,9 @@ struct Scene {
     touch_blocks(soil, grid);
     soil_nodes.reset(grid.nodes());
     water_nodes.reset(grid.nodes());
-    particles_to_grid(soil, soil_tau, soil_drag, grid, soil_nodes);
-    particles_to_grid(water, water_tau, {}, grid, water_nodes);
+    const auto stress = [](const std::vector<Mat<Dim>>& tau) { return tau.empty() ? nullptr : &tau; };
+    particles_to_grid(soil, {.tau = stress(soil_tau), .drag = &soil_drag}, grid, soil_nodes);
+    particles_to_grid(water, {.tau = stress(water_tau)}, grid, water_nodes);
     for (std::size_t i = 0; i < grid.nodes(); ++i) {
       soil_nodes.force[i] += soil_nodes.mass[i] * gravity;
       water_nodes.force[i] += water_nodes.mass[i] * gravity;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "solvers/mpm2grid/boundary/walls.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
@@ -139,7 +140,7 @@ TYPED_TEST(Transfer, ApicConservesMassLinearAndAngularMomentum) {
   touch_blocks(P, grid);
   NodeFields<Dim> nodes;
   nodes.reset(grid.nodes());
-  particles_to_grid(P, {}, {}, grid, nodes);
+  particles_to_grid(P, {}, grid, nodes);
 
   double mass = 0;
   Vec<Dim> momentum = Vec<Dim>::Zero();
@@ -158,7 +159,7 @@ TYPED_TEST(Transfer, ApicConservesMassLinearAndAngularMomentum) {
   EXPECT_LT((particle_angular_momentum(P, h) - L_grid).norm(), kRoundOff * L_grid.norm());
   NodeFields<Dim> again;
   again.reset(grid.nodes());
-  particles_to_grid(P, {}, {}, grid, again);
+  particles_to_grid(P, {}, grid, again);
   EXPECT_LT((grid_angular_momentum(grid, again) - L_grid).norm(), kRoundOff * L_grid.norm());
 }
 
@@ -179,7 +180,7 @@ TYPED_TEST(Transfer, AffineVelocityFieldIsTransferredExactly) {
   touch_blocks(P, grid);
   NodeFields<Dim> nodes;
   nodes.reset(grid.nodes());
-  particles_to_grid(P, {}, {}, grid, nodes);
+  particles_to_grid(P, {}, grid, nodes);
   for (std::size_t i = 0; i < grid.nodes(); ++i)
     nodes.velocity[i] = nodes.mass[i] > 0 ? Vec<Dim>(nodes.momentum[i] / nodes.mass[i]) : Vec<Dim>::Zero();
   std::vector<Mat<Dim>> grad_v;
@@ -195,60 +196,82 @@ TYPED_TEST(Transfer, AffineVelocityFieldIsTransferredExactly) {
 // The tiled transfers (grid/node_tile.hpp, transfer/stencil_rows.hpp) against the sums of the
 // spec written node by node with Stencil's weights and gradients and BlockGrid's slots, for
 // particles in no particular order (so that groups recur and tiles are flushed and gathered many
-// times), with stresses, drag coefficients and pressures. The two sum the same terms in another
-// order: the relative difference is round-off (kRoundOff, see the top).
+// times), in every form the step uses: the soil's full stresses with drag coefficients and the
+// buoyancy from node pressures, the water's pressures (isotropic stress), each with the forces
+// apart and folded into the momentum times dt. The two sum the same terms in another order: the
+// relative difference is round-off (kRoundOff, see the top).
 TYPED_TEST(Transfer, TiledTransfersEqualTheNodeByNodeSums) {
   constexpr int Dim = TypeParam::value;
   std::mt19937 rng(17);
-  const double h = 0.05;
+  const double h = 0.05, dt = 1e-3;
   Particles<Dim> P;
   std::vector<Mat<Dim>> tau;
-  std::vector<double> extra;
+  std::vector<double> extra, solid;
   for (int i = 0; i < 400; ++i) {
     P.add(random_point<Dim>(rng, -0.4, 0.3), random_point<Dim>(rng, -1.0, 1.0), 0.5 + (i % 5) * 0.2, 1e-3);
     P.C.back() = Mat<Dim>::Random() * 3.0;
+    P.J.back() = 0.9 + 0.05 * (i % 4);
     tau.push_back(Mat<Dim>::Random() * 1e4);
     extra.push_back(1e3 * (1 + i % 3));
+    solid.push_back(6e-4 * (1 + i % 2));
   }
   BlockGrid<Dim> grid(h);
   touch_blocks(P, grid);
-  for (const bool water : {true, false}) {  // pressure (water) or drag (soil) as the extra field
-    NodeFields<Dim> tiled, direct;
-    tiled.reset(grid.nodes());
-    direct.reset(grid.nodes());
-    particles_to_grid(P, tau, water ? std::vector<double>{} : extra, grid, tiled,
-                      water ? extra : std::vector<double>{});
-    std::array<long, BlockGrid<Dim>::kNodes> slots;
-    for (std::size_t p = 0; p < P.size(); ++p) {
-      const Stencil<Dim> st(P.x[p], h);
-      grid.stencil_slots(st, slots);
-      int n = 0;
-      st.for_each([&](const Index<Dim>& k, const Index<Dim>& node) {
-        const auto i = static_cast<std::size_t>(slots[static_cast<std::size_t>(n++)]);
-        Vec<Dim> xi;
-        for (int d = 0; d < Dim; ++d) xi[d] = node[d] * h;
-        const double w = st.weight(k);
-        direct.mass[i] += w * P.mass[p];
-        direct.momentum[i] += w * P.mass[p] * (P.v[p] + P.C[p] * (xi - P.x[p]));
-        direct.force[i] -= P.volume0[p] * tau[p] * st.gradient(k);
-        (water ? direct.pressure[i] : direct.drag[i]) += w * (water ? P.mass[p] : 1.0) * extra[p];
-      });
+  std::vector<double> node_pressure(grid.nodes());
+  std::uniform_real_distribution<double> pressure(0.0, 2e3);
+  for (auto& p : node_pressure) p = pressure(rng);
+  for (const bool water : {true, false})     // pressures (water) or stresses, drag and buoyancy (soil)
+    for (const bool fold : {false, true}) {  // forces apart or in the momentum times dt
+      SCOPED_TRACE(std::string(water ? "water" : "soil") + (fold ? ", folded" : ", apart"));
+      P2GSources<Dim> in{.fold_dt = fold ? dt : 0.0};
+      if (water)
+        in.pressure = &extra;
+      else
+        in.tau = &tau, in.drag = &extra, in.solid_volume = &solid, in.node_pressure = &node_pressure;
+      NodeFields<Dim> tiled, direct;
+      tiled.reset(grid.nodes());
+      direct.reset(grid.nodes());
+      particles_to_grid(P, in, grid, tiled);
+      std::array<long, BlockGrid<Dim>::kNodes> slots;
+      for (std::size_t p = 0; p < P.size(); ++p) {
+        const Stencil<Dim> st(P.x[p], h);
+        grid.stencil_slots(st, slots);
+        const Mat<Dim> stress = water ? Mat<Dim>(-P.J[p] * extra[p] * Mat<Dim>::Identity()) : tau[p];
+        Vec<Dim> grad_p = Vec<Dim>::Zero();  // the buoyancy's sum_i p_i grad w_ip
+        int n = 0;
+        st.for_each([&](const Index<Dim>& k, const Index<Dim>&) {
+          grad_p += node_pressure[static_cast<std::size_t>(slots[static_cast<std::size_t>(n++)])] * st.gradient(k);
+        });
+        const Vec<Dim> body = water ? Vec<Dim>::Zero() : Vec<Dim>(-solid[p] * grad_p);
+        n = 0;
+        st.for_each([&](const Index<Dim>& k, const Index<Dim>& node) {
+          const auto i = static_cast<std::size_t>(slots[static_cast<std::size_t>(n++)]);
+          Vec<Dim> xi;
+          for (int d = 0; d < Dim; ++d) xi[d] = node[d] * h;
+          const double w = st.weight(k);
+          const Vec<Dim> f = -P.volume0[p] * stress * st.gradient(k) + w * body;
+          direct.mass[i] += w * P.mass[p];
+          direct.momentum[i] += w * P.mass[p] * (P.v[p] + P.C[p] * (xi - P.x[p])) + (fold ? dt : 0.0) * f;
+          if (!fold) direct.force[i] += f;
+          (water ? direct.pressure[i] : direct.drag[i]) += w * (water ? P.mass[p] : 1.0) * extra[p];
+        });
+      }
+      double mass = 0, momentum = 0, force = 0, ext = 0;  // scales: the largest of each
+      for (std::size_t i = 0; i < grid.nodes(); ++i) {
+        mass = std::max(mass, direct.mass[i]);
+        momentum = std::max(momentum, direct.momentum[i].norm());
+        force = std::max(force, direct.force[i].norm());
+        ext = std::max({ext, direct.pressure[i], direct.drag[i]});
+      }
+      ASSERT_GT(force + (fold ? 1.0 : 0.0), 0.0);
+      for (std::size_t i = 0; i < grid.nodes(); ++i) {
+        ASSERT_NEAR(tiled.mass[i], direct.mass[i], kRoundOff * mass);
+        ASSERT_LT((tiled.momentum[i] - direct.momentum[i]).norm(), kRoundOff * momentum);
+        ASSERT_LE((tiled.force[i] - direct.force[i]).norm(), kRoundOff * force);  // folded: both 0
+        ASSERT_NEAR(tiled.pressure[i], direct.pressure[i], kRoundOff * ext);
+        ASSERT_NEAR(tiled.drag[i], direct.drag[i], kRoundOff * ext);
+      }
     }
-    double mass = 0, momentum = 0, force = 0, ext = 0;  // scales: the largest of each
-    for (std::size_t i = 0; i < grid.nodes(); ++i) {
-      mass = std::max(mass, direct.mass[i]);
-      momentum = std::max(momentum, direct.momentum[i].norm());
-      force = std::max(force, direct.force[i].norm());
-      ext = std::max({ext, direct.pressure[i], direct.drag[i]});
-    }
-    for (std::size_t i = 0; i < grid.nodes(); ++i) {
-      ASSERT_NEAR(tiled.mass[i], direct.mass[i], kRoundOff * mass);
-      ASSERT_LT((tiled.momentum[i] - direct.momentum[i]).norm(), kRoundOff * momentum);
-      ASSERT_LT((tiled.force[i] - direct.force[i]).norm(), kRoundOff * force);
-      ASSERT_NEAR(tiled.pressure[i], direct.pressure[i], kRoundOff * ext);
-      ASSERT_NEAR(tiled.drag[i], direct.drag[i], kRoundOff * ext);
-    }
-  }
   // G2P of an arbitrary velocity field against v = sum w v_i, B = sum w v_i (x_i - x_p)^T, G =
   // sum v_i grad w^T.
   NodeFields<Dim> nodes;

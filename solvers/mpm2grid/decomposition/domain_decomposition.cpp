@@ -31,23 +31,16 @@ void DomainDecomposition<Dim>::prepare(BlockGrid<Dim>& grid) {
 }
 
 template <int Dim>
-void DomainDecomposition<Dim>::sum_to_owners(NodeFields<Dim>& soil, NodeFields<Dim>& water) {
-  constexpr int per = 3 + 2 * Dim;  // mass, drag, pressure sum, momentum, force
+void DomainDecomposition<Dim>::sum_to_owners(NodeFields<Dim>& f) {
   halo_.reverse(
-      comm_, 2 * per,
+      comm_, 3 + 2 * Dim,  // mass, drag, pressure sum, momentum, force
       [&](long i, double* out) {
-        for (const auto* f : {&soil, &water}) {
-          out[0] = f->mass[i], out[1] = f->drag[i], out[2] = f->pressure[i];
-          for (int d = 0; d < Dim; ++d) out[3 + d] = f->momentum[i][d], out[3 + Dim + d] = f->force[i][d];
-          out += per;
-        }
+        out[0] = f.mass[i], out[1] = f.drag[i], out[2] = f.pressure[i];
+        for (int d = 0; d < Dim; ++d) out[3 + d] = f.momentum[i][d], out[3 + Dim + d] = f.force[i][d];
       },
       [&](long i, const double* in) {
-        for (auto* f : {&soil, &water}) {
-          f->mass[i] += in[0], f->drag[i] += in[1], f->pressure[i] += in[2];
-          for (int d = 0; d < Dim; ++d) f->momentum[i][d] += in[3 + d], f->force[i][d] += in[3 + Dim + d];
-          in += per;
-        }
+        f.mass[i] += in[0], f.drag[i] += in[1], f.pressure[i] += in[2];
+        for (int d = 0; d < Dim; ++d) f.momentum[i][d] += in[3 + d], f.force[i][d] += in[3 + Dim + d];
       });
   stats_.halo_bytes += halo_.take_bytes();
 }
@@ -81,19 +74,6 @@ void DomainDecomposition<Dim>::copy_to_ghosts(std::vector<double>& per_slot) {
   halo_.forward(
       comm_, 1, [&](long i, double* out) { out[0] = per_slot[static_cast<std::size_t>(i)]; },
       [&](long i, const double* in) { per_slot[static_cast<std::size_t>(i)] = in[0]; });
-  stats_.halo_bytes += halo_.take_bytes();
-}
-
-template <int Dim>
-void DomainDecomposition<Dim>::sum_to_owners(std::vector<Vec<Dim>>& per_slot) {
-  halo_.reverse(
-      comm_, Dim,
-      [&](long i, double* out) {
-        for (int d = 0; d < Dim; ++d) out[d] = per_slot[static_cast<std::size_t>(i)][d];
-      },
-      [&](long i, const double* in) {
-        for (int d = 0; d < Dim; ++d) per_slot[static_cast<std::size_t>(i)][d] += in[d];
-      });
   stats_.halo_bytes += halo_.take_bytes();
 }
 

@@ -5,8 +5,8 @@
 // holding the lower corner of its cell). Per step:
 //   prepare()         the grid of this rank's particles' stencils: blocks no rank owns yet are
 //                     claimed, the halo is planned (halo_exchange.hpp);
-//   sum_to_owners()   after P2G: one reverse halo sum of both species' mass, momentum, force and
-//                     drag coefficients;
+//   sum_to_owners()   after each species' P2G: a reverse halo sum of its mass, momentum, force,
+//                     drag coefficients and pressure sums;
 //   copy_to_ghosts()  after the grid solve and the boundary conditions: one forward copy of both
 //                     species' velocities and the water's mass (the soil's saturation reads it);
 //   migrate()         after the particles moved: each goes to the rank owning its new home block.
@@ -28,8 +28,8 @@
 namespace suite::mpm2grid {
 
 struct DecompositionSettings {
-  int check_every = 20;     // steps between load measurements
-  double imbalance = 1.1;   // rebalance above this ratio of the largest to the mean particle count
+  int check_every = 20;    // steps between load measurements
+  double imbalance = 1.1;  // rebalance above this ratio of the largest to the mean particle count
 };
 
 // What this rank did, summed since the run (or its restart) began.
@@ -57,9 +57,9 @@ class DomainDecomposition {
   // Per block of the prepared grid: 1 where this rank owns it.
   const std::vector<char>& owned_blocks() const { return halo_.owned(); }
 
-  // COLLECTIVE. Owners get the complete sums of mass, momentum, force (before gravity), drag and
-  // the water's pressure sums.
-  void sum_to_owners(NodeFields<Dim>& soil, NodeFields<Dim>& water);
+  // COLLECTIVE. Owners get the complete sums of one species' mass, momentum, force (before
+  // gravity), drag and pressure sums.
+  void sum_to_owners(NodeFields<Dim>& species);
   // COLLECTIVE. Ghost nodes get their owners' velocities (both species) and water mass.
   void copy_to_ghosts(NodeFields<Dim>& soil, NodeFields<Dim>& water);
   // COLLECTIVE. Ghost nodes get their owners' values of a per-slot integer (the drag solve's
@@ -67,8 +67,6 @@ class DomainDecomposition {
   void copy_to_ghosts(std::vector<long>& per_slot);
   // COLLECTIVE. The same for a per-slot value (the water's node pressure).
   void copy_to_ghosts(std::vector<double>& per_slot);
-  // COLLECTIVE. Owners add the ghost copies of a per-slot vector (the buoyancy on the soil).
-  void sum_to_owners(std::vector<Vec<Dim>>& per_slot);
 
   // COLLECTIVE. Every particle goes to the rank owning its home block (claimed if new).
   void migrate(Particles<Dim>& water, Particles<Dim>& soil);

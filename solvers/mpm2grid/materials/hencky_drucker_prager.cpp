@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "solvers/mpm2grid/materials/log_stretch.hpp"
 
 namespace suite::mpm2grid {
 
@@ -49,8 +50,13 @@ double HenckyDruckerPrager::p_wave_speed(double density) const {
 
 template <int Dim>
 Matrix<Dim> HenckyDruckerPrager::kirchhoff(const Matrix<Dim>& F_E) const {
-  const LeftStretch<Dim> b = left_stretch<Dim>(F_E);
-  return kirchhoff<Dim>(b.U, b.log_sigma);
+  const StretchSpectrum<Dim> s = stretch_spectrum<Dim>(F_E);
+  return hencky_stress<Dim>(log_left_stretch<Dim>(s), s.log_sigma.sum());
+}
+
+template <int Dim>
+Matrix<Dim> HenckyDruckerPrager::hencky_stress(const Matrix<Dim>& log_v, double log_j) const {
+  return 2 * mu * log_v + lambda * log_j * Matrix<Dim>::Identity();
 }
 
 template <int Dim>
@@ -108,16 +114,29 @@ StrainReturn<Dim> HenckyDruckerPrager::return_strain(const Vector<Dim>& eps_tria
 
 template <int Dim>
 ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const {
-  const LeftStretch<Dim> b = left_stretch<Dim>(F_trial);
   const double shift = volume_correction ? log_jp : 0.0;  // log-volume added to the trial strain
+  {
+    // The yield test needs the principal strains alone, and an elastic return's stress the
+    // strain tensor from them (log_stretch.hpp): the principal directions only for a plastic one.
+    const StretchSpectrum<Dim> s = stretch_spectrum<Dim>(F_trial);
+    if (return_strain<Dim>((s.log_sigma.array() + shift / Dim).matrix(), saturation).kind == ReturnCase::elastic) {
+      // U exp(eps + shift/Dim) V^T = exp(shift/Dim) F_trial: no round-off from U.
+      ReturnResult<Dim> out;
+      out.F = shift == 0 ? F_trial : (std::exp(shift / Dim) * F_trial).eval();
+      out.log_jp = volume_correction ? 0.0 : log_jp;
+      out.has_stress = shift == 0;
+      if (out.has_stress) out.stress = hencky_stress<Dim>(log_left_stretch<Dim>(s), s.log_sigma.sum());
+      return out;
+    }
+  }
+  const LeftStretch<Dim> b = left_stretch<Dim>(F_trial);
   const Vector<Dim> eps = (b.log_sigma.array() + shift / Dim).matrix();
   const StrainReturn<Dim> r = return_strain<Dim>(eps, saturation);
 
   ReturnResult<Dim> out;
   out.kind = r.kind;
   out.plastic_strain = (eps - r.eps).norm();
-  if (r.kind == ReturnCase::elastic) {
-    // U exp(eps + shift/Dim) V^T = exp(shift/Dim) F_trial: no SVD round-off.
+  if (r.kind == ReturnCase::elastic) {  // the closed form's strains were just outside the cone
     out.F = shift == 0 ? F_trial : (std::exp(shift / Dim) * F_trial).eval();
     out.has_stress = shift == 0;
     if (out.has_stress) out.stress = kirchhoff<Dim>(b.U, b.log_sigma);

@@ -14,7 +14,9 @@
 //   P   = dpsi/dF_E = tau F_E^-T = U diag((2 mu eps_i + lambda tr eps) / sigma_i) V^T   Pa
 // tau is linear in eps, so the return mapping below is exact (no iteration). kirchhoff() and
 // project() need only U and sigma, which left_stretch() (materials/polar_svd.hpp) gives faster
-// than a full SVD in 3D (from F F^T = U diag(sigma^2) U^T), and V^T = diag(1/sigma) U^T F.
+// than a full SVD in 3D (from F F^T = U diag(sigma^2) U^T), and V^T = diag(1/sigma) U^T F. An
+// elastic state's tau = 2 mu log V + lambda tr(eps) I needs not even U: log V comes from the
+// eigenvalues of F F^T alone (materials/log_stretch.hpp), and only plastic returns find U.
 //
 // Plasticity (compression positive). With bulk modulus K = lambda + 2 mu / Dim and
 //   p = -K tr(eps)                       pressure, Pa  (= -tr(tau) / Dim)
@@ -182,6 +184,9 @@ struct HenckyDruckerPrager {
   ReturnResult<Dim> project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const;
 
  private:
+  // Kirchhoff stress 2 mu log V + lambda log J I of a Hencky strain tensor log V, log J = tr log V.
+  template <int Dim>
+  Matrix<Dim> hencky_stress(const Matrix<Dim>& log_v, double log_j) const;
   // Kirchhoff stress of principal Hencky strains eps along the columns of U.
   template <int Dim>
   Matrix<Dim> kirchhoff(const Matrix<Dim>& U, const Vector<Dim>& eps) const;

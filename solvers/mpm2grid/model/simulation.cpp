@@ -72,35 +72,57 @@ void Simulation<Dim>::build_grid() {
   soil_nodes_.reset(grid_.nodes());
 }
 
-// Kirchhoff stresses and the soil's drag coefficients c_E V_p.
+// The particles' stress inputs to P2G: the water's pressures (its Kirchhoff stress is -J p I),
+// the soil's Kirchhoff stresses, drag coefficients c_E V_p and solid volumes (1 - n) V_p.
 template <int Dim>
 void Simulation<Dim>::stresses() {
-  // tau = -J p I (WeaklyCompressibleWater::kirchhoff), from the one pressure the buoyancy uses too.
-  water_tau_.resize(water_.size());
-  water_pressure_.resize(s_.buoyancy ? water_.size() : 0);
-  for (std::size_t p = 0; p < water_.size(); ++p) {
-    const double pressure = s_.water.eos.pressure(water_.J[p]);
-    water_tau_[p] = -water_.J[p] * pressure * Mat<Dim>::Identity();
-    if (s_.buoyancy) water_pressure_[p] = pressure;
-  }
+  water_pressure_.resize(water_.size());
+  for (std::size_t p = 0; p < water_.size(); ++p) water_pressure_[p] = s_.water.eos.pressure(water_.J[p]);
   soil_tau_.resize(soil_.size());
   soil_drag_.resize(soil_.size());
-  const double c_e = s_.soil.drag_coefficient(s_.water.density);
+  solid_volume_.resize(s_.buoyancy ? soil_.size() : 0);
+  const double c_e = s_.soil.drag_coefficient(s_.water.density), solid = 1 - s_.soil.porosity;
   for (std::size_t p = 0; p < soil_.size(); ++p) {
     // The stress is a function of F_E alone: a known one for a bit-for-bit equal F_E is the
-    // same value, without another SVD. (Particles removed or moved since only miss it.)
+    // same value, not computed again. (Particles removed or moved since only miss it.)
     const bool known = p < known_stress_.size() && known_stress_[p].known &&
                        std::memcmp(known_stress_[p].F.data(), soil_.F[p].data(), sizeof(Mat<Dim>)) == 0;
     soil_tau_[p] = known ? known_stress_[p].tau : s_.soil.material.template kirchhoff<Dim>(soil_.F[p]);
-    soil_drag_[p] = c_e * soil_.volume0[p] * soil_.F[p].determinant();
+    const double volume = soil_.volume0[p] * soil_.F[p].determinant();
+    soil_drag_[p] = c_e * volume;
+    if (s_.buoyancy) solid_volume_[p] = solid * volume;
   }
 }
 
 // The transfers below are compiled for the baseline and for AVX2 (kernels/vector_clones.hpp).
 template <int Dim>
-SUITE_VECTOR_CLONES void Simulation<Dim>::particles_to_grids() {
-  particles_to_grid(water_, water_tau_, {}, grid_, water_nodes_, water_pressure_);
-  particles_to_grid(soil_, soil_tau_, soil_drag_, grid_, soil_nodes_);
+SUITE_VECTOR_CLONES void Simulation<Dim>::spread(const Particles<Dim>& P, const P2GSources<Dim>& in,
+                                                 NodeFields<Dim>& nodes) {
+  particles_to_grid(P, in, grid_, nodes);
+}
+
+// P2G of both species. The water goes first: its node pressures p_i = sum_p w_ip m_p p_p / m_i
+// (0 where there is no water), complete on every active node after the halo sum and copy, give
+// the buoyancy on the soil in the soil's P2G (see the header). With the lumped or consistent
+// drag, the forces go into the momentum sums times dt (P2GSources::fold_dt); the explicit drag
+// needs the momentum alone. Every rank of a decomposition takes part (the halo exchanges), with
+// or without particles.
+template <int Dim>
+void Simulation<Dim>::particles_to_grids(double dt) {
+  const double fold_dt = s_.drag == DragScheme::explicit_euler ? 0.0 : dt;
+  spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt}, water_nodes_);
+  if (dd_) dd_->sum_to_owners(water_nodes_);
+  P2GSources<Dim> soil{.tau = &soil_tau_, .drag = &soil_drag_, .fold_dt = fold_dt};
+  if (s_.buoyancy) {
+    auto& p = water_nodes_.pressure;
+    for (std::size_t i = 0; i < grid_.nodes(); ++i) p[i] = water_nodes_.mass[i] > 0 ? p[i] / water_nodes_.mass[i] : 0.0;
+    if (dd_) dd_->copy_to_ghosts(p);
+    soil.solid_volume = &solid_volume_;
+    soil.node_pressure = &p;
+  }
+  spread(soil_, soil, soil_nodes_);
+  if (s_.loads) add_loads();
+  if (dd_) dd_->sum_to_owners(soil_nodes_);
 }
 
 template <int Dim>
@@ -108,11 +130,8 @@ void Simulation<Dim>::step(double dt) {
   if (dd_) dd_->balance(steps_, water_, soil_);
   build_grid();
   stresses();
-  particles_to_grids();
-  if (s_.loads) add_loads();
-  if (dd_) dd_->sum_to_owners(soil_nodes_, water_nodes_);
+  particles_to_grids(dt);
   if (s_.mixture) solid_fractions();
-  if (s_.buoyancy) add_buoyancy();
   for (std::size_t i = 0; i < grid_.nodes(); ++i) {
     water_nodes_.force[i] += water_nodes_.mass[i] * s_.gravity;
     soil_nodes_.force[i] += soil_nodes_.mass[i] * s_.gravity;
@@ -151,34 +170,6 @@ void Simulation<Dim>::solve_grid(double dt) {
   auto numbering = NodeNumbering::own_blocks(*comm_, soil_nodes_, water_nodes_, dd_->owned_blocks());
   dd_->copy_to_ghosts(numbering.global);
   drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering);
-}
-
-// The Archimedes force on the soil from the water grid's pressure (see the header). Every rank
-// of a decomposition takes part (the halo copies), with or without particles.
-template <int Dim>
-SUITE_VECTOR_CLONES void Simulation<Dim>::add_buoyancy() {
-  auto& p = water_nodes_.pressure;
-  for (std::size_t i = 0; i < grid_.nodes(); ++i) p[i] = water_nodes_.mass[i] > 0 ? p[i] / water_nodes_.mass[i] : 0.0;
-  if (dd_) dd_->copy_to_ghosts(p);
-  buoyancy_.assign(grid_.nodes(), Vec<Dim>::Zero());
-  const double solid = 1 - s_.soil.porosity;
-  // Tile fields: 0 the node pressures (read), 1 .. Dim the buoyancy (added to).
-  using Tile = NodeTile<Dim, 1 + Dim>;
-  auto tile = std::make_unique<Tile>();
-  const auto enter = [&] { tile->gather(0, p); };
-  const auto leave = [&] {
-    tile->for_each_node([&](int t, long slot) {
-      for (int d = 0; d < Dim; ++d) buoyancy_[static_cast<std::size_t>(slot)][d] += tile->field(1 + d)[t];
-    });
-  };
-  sweep_groups(soil_.x, grid_, *tile, enter, leave, [&](std::size_t q, const StencilRows<Dim>& st, int first) {
-    const Vec<Dim> grad = sample_field<false, true>(*tile, 0, st, first).gradient;
-    if (grad.isZero(0.0)) return;
-    const Vec<Dim> force = -solid * soil_.volume0[q] * soil_.F[q].determinant() * grad;
-    scatter_weighted(*tile, 1, force.data(), Dim, st, first);
-  });
-  if (dd_) dd_->sum_to_owners(buoyancy_);
-  for (std::size_t i = 0; i < grid_.nodes(); ++i) soil_nodes_.force[i] += buoyancy_[i];
 }
 
 // The soil particles' loads on the soil grid, scaled by the ramp at the step's start.

@@ -1,8 +1,9 @@
 #pragma once
 // One two-species (soil + water) MPM model and its time step (spec/mpm2grid.md, "Step n -> n+1"):
 //   1. blocks of the sparse grid from both species' stencils;
-//   2. P2G per species: mass, APIC momentum, internal force from the Kirchhoff stresses (soil:
-//      Hencky; water: weakly compressible), the soil's drag coefficients c_E V_p; gravity;
+//   2. P2G per species, the water first: mass, APIC momentum, internal force from the Kirchhoff
+//      stresses (soil: Hencky; water: weakly compressible), the soil's drag coefficients c_E V_p
+//      and its buoyancy from the water's node pressures; gravity;
 //   3. the drag-coupled grid velocity solve (coupling/drag_solve.hpp);
 //   4. wall conditions on both grids;
 //   5. G2P per species, positions, F_E (soil, then the Drucker-Prager return mapping with the
@@ -14,8 +15,9 @@
 // particle's S = clamp(sum_i w_ip phi_i / n, 0, 1), n the soil's porosity: pores full of water
 // give S = 1.
 // Over several ranks (a communicator of more than one rank), each rank steps the particles of
-// the grid blocks it owns, with one reverse halo sum after P2G, one forward halo copy after the
-// grid solve and the particles' migration to their new owners (decomposition/); the sums over
+// the grid blocks it owns, with a reverse halo sum after each species' P2G, one forward halo
+// copy after the grid solve and the particles' migration to their new owners (decomposition/)
+// (and, with buoyancy, a forward copy of the water's node pressures); the sums over
 // particles (masses, energies, the outflow) are then over all ranks.
 // Buoyancy (spec/mpm2grid.md, "Buoyancy"; on unless a scene turns it off): the soil skeleton
 // feels the water's pressure field, the Archimedes force -(1 - n) V_s grad p on each soil
@@ -169,12 +171,12 @@ class Simulation {
  private:
   void build_grid();
   void stresses();
-  void particles_to_grids();
+  void particles_to_grids(double dt);
+  void spread(const Particles<Dim>& P, const P2GSources<Dim>& in, NodeFields<Dim>& nodes);
   void update_particles(double dt);
   void update_saturation();
   void remove_outflow();
   void solve_grid(double dt);
-  void add_buoyancy();
   void add_loads();
   void solid_fractions();
   void mixture_volume_rates(double dt);
@@ -183,10 +185,9 @@ class Simulation {
   Particles<Dim> water_, soil_;
   BlockGrid<Dim> grid_;
   NodeFields<Dim> water_nodes_, soil_nodes_;
-  std::vector<Mat<Dim>> water_tau_, soil_tau_, grad_v_;
-  std::vector<double> soil_drag_, water_pressure_;
+  std::vector<Mat<Dim>> soil_tau_, grad_v_;
+  std::vector<double> soil_drag_, solid_volume_, water_pressure_;
   std::vector<double> solid_fraction_;  // mixture: phi_s per node slot
-  std::vector<Vec<Dim>> buoyancy_;      // per node slot, N
   // Per soil particle, a Kirchhoff stress the return mapping had at hand and the F_E it belongs
   // to: the next stresses() takes it where the particle's F_E is still exactly that one.
   struct KnownStress {

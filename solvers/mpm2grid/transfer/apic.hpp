@@ -2,7 +2,8 @@
 // APIC transfers with cubic B-splines (Jiang et al. 2015; spec/mpm2grid.md, steps 1, 2 and 5),
 // one species at a time:
 //   P2G  m_i = sum_p w_ip m_p,   (m v)_i = sum_p w_ip m_p (v_p + C_p (x_i - x_p)),
-//        f_i = -sum_p V_p^0 tau_p grad w_ip   (tau_p the Kirchhoff stress: V^0 P F^T = V^0 tau),
+//        f_i = -sum_p V_p^0 tau_p grad w_ip   (tau_p the Kirchhoff stress: V^0 P F^T = V^0 tau)
+//              + sum_p w_ip g_p               (g_p a body force on the particle: the buoyancy),
 //        d_i = sum_p (c_E V)_p w_ip           (drag coefficients, soil only, when given);
 //   G2P  v_p = sum_i w_ip v_i,   C_p = sum_i w_ip v_i (x_i - x_p)^T D^-1,  D^-1 = 3 / h^2,
 //        grad v_p = sum_i v_i (grad w_ip)^T.
@@ -12,6 +13,7 @@
 // transfer/stencil_rows.hpp; they give the same sums for particles in any order, and work
 // fastest in group order (transfer/particle_order.hpp).
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "solvers/mpm2grid/grid/block_grid.hpp"
@@ -39,36 +41,89 @@ void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, std::ve
   }
 }
 
-// Adds one species' particles to its node fields (reset to the grid's size by the caller).
-// tau: one Kirchhoff stress per particle (Pa), or empty for none; drag: c_E V per particle
-// (kg/s), or empty; pressure: p per particle (Pa), added as w m p, or empty (not both drag and
-// pressure). The particles' stencils must lie in active blocks (touch_blocks).
+// What P2G spreads besides the particles' mass and APIC momentum (each null when not used).
 template <int Dim>
-void particles_to_grid(const Particles<Dim>& P, const std::vector<Mat<Dim>>& tau, const std::vector<double>& drag,
-                       const BlockGrid<Dim>& grid, NodeFields<Dim>& nodes, const std::vector<double>& pressure = {}) {
-  using Tile = NodeTile<Dim, 2 * Dim + 2>;  // mass, momentum, force, drag or pressure
+struct P2GSources {
+  // The internal force -V0 tau_p grad w_ip, from either a Kirchhoff stress tau per particle (Pa)
+  const std::vector<Mat<Dim>>* tau = nullptr;
+  // or a pressure p per particle (Pa): the water's tau = -J p I. Then w_ip m_p p_p is also added
+  // to nodes.pressure (the buoyancy's node pressures).
+  const std::vector<double>* pressure = nullptr;
+  // c_E V per particle (kg/s): w_ip c_E V into nodes.drag (not with `pressure`).
+  const std::vector<double>* drag = nullptr;
+  // Buoyancy: the body force -V_s grad p on each particle, spread with w_ip, V_s per particle
+  // (m^3) and grad p = sum_i p_i grad w_ip from node pressures p_i per slot (Pa).
+  const std::vector<double>* solid_volume = nullptr;
+  const std::vector<double>* node_pressure = nullptr;
+  // > 0: the forces times fold_dt go into nodes.momentum (m v + dt f, what the lumped and
+  // consistent drag solves read; nodes.force is left alone). 0: into nodes.force.
+  double fold_dt = 0;
+};
+
+namespace detail {
+
+template <StressForm Form, bool Fold, int Dim>
+void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const BlockGrid<Dim>& grid,
+                       NodeFields<Dim>& nodes) {
+  // Tile fields: mass, momentum, [force,] the drag or pressure sums, the node pressures read.
+  constexpr int kExtra = Fold ? 1 + Dim : 1 + 2 * Dim;
+  constexpr int kRead = kExtra + 1;
+  using Tile = NodeTile<Dim, kRead + 1>;
   auto tile = std::make_unique<Tile>();
-  const bool stresses = !tau.empty(), has_drag = !drag.empty(), has_pressure = !pressure.empty();
-  std::vector<double>& extra_field = has_drag ? nodes.drag : nodes.pressure;
-  const bool extra = has_drag || has_pressure;
+  const bool forced = !Fold && (Form != StressForm::none || in.node_pressure);
+  const bool extra = in.drag || in.pressure;
+  std::vector<double>& extra_field = in.drag ? nodes.drag : nodes.pressure;
+  const auto enter = [&] { in.node_pressure ? tile->gather(kRead, *in.node_pressure) : tile->zero(); };
   const auto leave = [&] {
-    const double *M = tile->field(0), *X = tile->field(1 + 2 * Dim);
     tile->for_each_node([&](int t, long slot) {
       const auto i = static_cast<std::size_t>(slot);
-      nodes.mass[i] += M[t];
+      nodes.mass[i] += tile->field(0)[t];
       for (int a = 0; a < Dim; ++a) nodes.momentum[i][a] += tile->field(1 + a)[t];
-      if (stresses)
+      if (forced)
         for (int a = 0; a < Dim; ++a) nodes.force[i][a] += tile->field(1 + Dim + a)[t];
-      if (extra) extra_field[i] += X[t];
+      if (extra) extra_field[i] += tile->field(kExtra)[t];
     });
   };
-  sweep_groups(
-      P.x, grid, *tile, [&] { tile->zero(); }, leave,
-      [&](std::size_t p, const StencilRows<Dim>& s, int first) {
-        const Mat<Dim> stress = stresses ? Mat<Dim>(P.volume0[p] * tau[p]) : Mat<Dim>::Zero();
-        const double e = has_drag ? drag[p] : has_pressure ? P.mass[p] * pressure[p] : 0.0;
-        scatter_apic(*tile, s, first, P.mass[p], P.v[p], P.C[p], stresses ? &stress : nullptr, extra ? &e : nullptr);
-      });
+  Mat<Dim> S = Mat<Dim>::Zero();
+  sweep_groups(P.x, grid, *tile, enter, leave, [&](std::size_t p, const StencilRows<Dim>& s, int first) {
+    if constexpr (Form == StressForm::full) S = P.volume0[p] * (*in.tau)[p];
+    if constexpr (Form == StressForm::isotropic) S(0, 0) = -P.volume0[p] * P.J[p] * (*in.pressure)[p];
+    Vec<Dim> g = Vec<Dim>::Zero();
+    if (in.node_pressure) g = -(*in.solid_volume)[p] * sample_field<false, true>(*tile, kRead, s, first).gradient;
+    scatter_apic<Form, Fold>(*tile, s, first, P.mass[p], P.v[p], P.C[p], S, g, in.fold_dt);
+    if (extra) {
+      const double e = in.drag ? (*in.drag)[p] : P.mass[p] * (*in.pressure)[p];
+      scatter_weighted(*tile, kExtra, &e, 1, s, first);
+    }
+  });
+}
+
+template <bool Fold, int Dim>
+void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const BlockGrid<Dim>& grid,
+                       NodeFields<Dim>& nodes) {
+  if (in.tau)
+    particles_to_grid<StressForm::full, Fold>(P, in, grid, nodes);
+  else if (in.pressure)
+    particles_to_grid<StressForm::isotropic, Fold>(P, in, grid, nodes);
+  else
+    particles_to_grid<StressForm::none, Fold>(P, in, grid, nodes);
+}
+
+}  // namespace detail
+
+// Adds one species' particles to its node fields (reset to the grid's size by the caller): mass,
+// APIC momentum and what `in` names. The particles' stencils must lie in active blocks
+// (touch_blocks); with buoyancy, the node pressures must be known on every active node.
+template <int Dim>
+void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const BlockGrid<Dim>& grid,
+                       NodeFields<Dim>& nodes) {
+  if ((in.tau && in.pressure) || (in.drag && in.pressure) || (!in.solid_volume != !in.node_pressure))
+    throw std::invalid_argument(
+        "particles_to_grid: tau or pressure, drag or pressure, and buoyancy's two inputs together");
+  if (in.fold_dt > 0)
+    detail::particles_to_grid<true>(P, in, grid, nodes);
+  else
+    detail::particles_to_grid<false>(P, in, grid, nodes);
 }
 
 // Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized).

@@ -90,6 +90,17 @@ inline void axpy4(double* row, double a, const double* x, double b, const double
   std::memcpy(row, &r, sizeof r);
 }
 
+// row[i] += a x[i] + b y[i] + c z[i], i = 0..3.
+inline void axpy4(double* row, double a, const double* x, double b, const double* y, double c, const double* z) {
+  Four r, u, w, t;
+  std::memcpy(&r, row, sizeof r);
+  std::memcpy(&u, x, sizeof u);
+  std::memcpy(&w, y, sizeof w);
+  std::memcpy(&t, z, sizeof t);
+  r += a * u + b * w + c * t;
+  std::memcpy(row, &r, sizeof r);
+}
+
 }  // namespace rows
 
 // A node field sampled at a particle: sum_i w_ip F_i, its first moment sum_i w_ip F_i (x_i -
@@ -140,38 +151,57 @@ void scatter_weighted(NodeTile<Dim, Fields>& tile, int f0, const double* c, int 
     for (int q = 0; q < n; ++q) rows::axpy4(tile.field(f0 + q) + first + Tile::row_offset(r), c[q] * s.w[r], s.wx);
 }
 
-// APIC's P2G for one particle (transfer/apic.hpp) into tile fields 0 (mass), 1 .. Dim
-// (momentum), and, when `stress` is given, Dim + 1 .. 2 Dim (force -stress grad w_ip), and,
-// when `extra` is given, 2 Dim + 1 (extra w_ip):
-//   m w_ip,   m w_ip (v + C (x_i - x_p)),   -S grad w_ip,   e w_ip.
-template <int Dim, int Fields>
+// How a particle's stress enters P2G: none, isotropic (S = s I, the water's -V0 J p I: one term
+// per axis instead of Dim) or a full matrix (the soil's V0 tau).
+enum class StressForm { none, isotropic, full };
+
+// APIC's P2G for one particle (transfer/apic.hpp) into tile fields 0 (mass) and 1 .. Dim
+// (momentum), with the force on each node
+//   f_i = -S grad w_ip + w_ip g     (S = V0 tau: S(0, 0) I when isotropic; g a body force, N)
+// either into fields Dim + 1 .. 2 Dim (Fold false) or, times dt, into the momentum fields (Fold
+// true: the node then holds m v + dt f, which is all the lumped and consistent drag solves read;
+// one 3-term row update per axis instead of two 2-term ones, and Dim fewer fields):
+//   m w_ip,   m w_ip (v + C (x_i - x_p)) [+ dt f_i],   [f_i].
+template <StressForm Form, bool Fold, int Dim, int Fields>
 void scatter_apic(NodeTile<Dim, Fields>& tile, const StencilRows<Dim>& s, int first, double m, const Vec<Dim>& v,
-                  const Mat<Dim>& C, const Mat<Dim>* stress, const double* extra) {
-  static_assert(Fields >= 2 * Dim + 2, "the APIC tile holds mass, momentum, force and one extra field");
+                  const Mat<Dim>& C, const Mat<Dim>& S, const Vec<Dim>& g, double dt) {
+  static_assert(Fields >= (Fold ? 1 + Dim : 1 + 2 * Dim), "the APIC tile holds mass, momentum and force");
   using Tile = NodeTile<Dim, Fields>;
   constexpr int kCross = StencilRows<Dim>::kCross;
   const Vec<Dim> mv = m * v;
   const Mat<Dim> mC = m * C;
+  const bool forced = Form != StressForm::none || !g.isZero(0.0);
   for (int r = 0; r < StencilRows<Dim>::kRows; ++r) {
     const int at = first + Tile::row_offset(r);
     const double W = s.w[r];
     rows::axpy4(tile.field(0) + at, m * W, s.wx);
     for (int a = 0; a < Dim; ++a) {
-      // m W_r (v_a + sum_e C_a,e+1 o_e) wx_i + m C_a0 W_r wx_i ox_i
+      // momentum: m W_r (v_a + sum_e C_a,e+1 o_e) wx_i + m C_a0 W_r wx_i ox_i
       double alpha = W * mv[a];
       for (int e = 0; e < kCross; ++e) alpha += mC(a, 1 + e) * s.wo[e][r];
-      rows::axpy4(tile.field(1 + a) + at, alpha, s.wx, W * mC(a, 0), s.wxo);
-    }
-    if (stress) {
-      const Mat<Dim>& S = *stress;
-      for (int a = 0; a < Dim; ++a) {
-        // -(S_a0 W_r dwx_i + sum_e S_a,e+1 dW_r,e wx_i)
-        double delta = 0;
-        for (int e = 0; e < kCross; ++e) delta += S(a, 1 + e) * s.dw[e][r];
-        rows::axpy4(tile.field(1 + Dim + a) + at, -S(a, 0) * W, s.dwx, -delta, s.wx);
+      const double beta = W * mC(a, 0);
+      // force: gamma dwx_i + delta wx_i, gamma = -S_a0 W_r, delta = W_r g_a - sum_e S_a,e+1 dW_r,e
+      double gamma = 0, delta = W * g[a];
+      if constexpr (Form == StressForm::full) {
+        gamma = -S(a, 0) * W;
+        for (int e = 0; e < kCross; ++e) delta -= S(a, 1 + e) * s.dw[e][r];
+      } else if constexpr (Form == StressForm::isotropic) {
+        if (a == 0)
+          gamma = -S(0, 0) * W;
+        else
+          delta -= S(0, 0) * s.dw[a - 1][r];
+      }
+      double* momentum = tile.field(1 + a) + at;
+      if constexpr (Fold) {
+        if (Form == StressForm::full || (Form == StressForm::isotropic && a == 0))
+          rows::axpy4(momentum, alpha + dt * delta, s.wx, beta, s.wxo, dt * gamma, s.dwx);
+        else
+          rows::axpy4(momentum, alpha + dt * delta, s.wx, beta, s.wxo);
+      } else {
+        rows::axpy4(momentum, alpha, s.wx, beta, s.wxo);
+        if (forced) rows::axpy4(tile.field(1 + Dim + a) + at, gamma, s.dwx, delta, s.wx);
       }
     }
-    if (extra) rows::axpy4(tile.field(1 + 2 * Dim) + at, *extra * W, s.wx);
   }
 }
 

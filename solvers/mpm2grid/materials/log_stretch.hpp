@@ -1,0 +1,104 @@
+#pragma once
+// The Hencky strain of a deformation gradient from the eigenvalues of b = F F^T alone, without
+// its eigenvectors: what an elastic soil particle needs (its Kirchhoff stress is a function of
+// log V, V = sqrt(b) the left stretch). In 3D about 3x cheaper than the eigen-solver of
+// left_stretch() (polar_svd.hpp), which plastic returns still use for their principal
+// directions; in 2D it saves left_stretch()'s half-angle square roots.
+//
+// Eigenvalues, descending. 2D: (b00 + b11)/2 + |((b00 - b11)/2, b01)|. 3D: the trigonometric
+// closed form on the deviator of b (Smith 1961): m = tr(b)/3, p = sqrt(tr((b - m I)^2) / 6),
+// cos(3 phi) = det((b - m I) / p) / 2, lambda_1 = m + 2 p cos(phi), lambda_3 = m + 2 p cos(phi +
+// 2 pi / 3), lambda_2 = 3 m - lambda_1 - lambda_3. Where two eigenvalues meet, phi is sensitive
+// (error about sqrt(machine epsilon) times p), but then the strain below hardly depends on them
+// (see there). The smallest is taken from det b = det(F)^2 instead, which keeps it to relative
+// round-off for nearly flat F.
+//
+// log b as a polynomial in b: Newton's interpolation of log at the eigenvalues a >= b' [>= c],
+//   log b = log(a) I + log[a, b'] (b - a I) [+ log[a, b', c] (b - a I)(b - b' I)],
+// exact for any symmetric b with those eigenvalues (it maps each eigenvalue to its log).
+// - 2D: log[a, b'] = (log a - log b') / (a - b') (1 / b' when equal): its round-off, divided by
+//   a - b', is multiplied by b - a I, of size a - b'.
+// - 3D: log[x, y] = log1p((x - y) / y) / (x - y) (1 / y when equal), without cancellation, and
+//   log[a, b', c] from its Taylor series about b' when a - c < 1e-4 c (error (1e-4)^3 relative),
+//   otherwise (log[a, b'] - log[b', c]) / (a - c), whose round-off is multiplied by
+//   (b - a I)(b - b' I), of size (a - c)^2.
+// The result's error stays at round-off of |log b| also where eigenvalues meet or nearly do
+// (tested against the SVD).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "solvers/mpm2grid/materials/polar_svd.hpp"
+
+namespace suite::mpm2grid {
+
+// The eigenvalues of b = F F^T and the principal log-stretches, both descending.
+template <int Dim>
+struct StretchSpectrum {
+  Matrix<Dim> b;
+  Vector<Dim> lambda;     // eigenvalues of b (sigma^2)
+  Vector<Dim> log_sigma;  // log(sigma) = log(lambda) / 2; NaN when det F <= 0 (inverted)
+};
+
+template <int Dim>
+StretchSpectrum<Dim> stretch_spectrum(const Matrix<Dim>& F) {
+  static_assert(Dim == 2 || Dim == 3, "material models are written for 2 or 3 dimensions");
+  StretchSpectrum<Dim> s;
+  s.b = F * F.transpose();
+  const double m = s.b.trace() / Dim, det = F.determinant();
+  double top = m, middle = m;  // the largest eigenvalue, and in 3D the middle one
+  if constexpr (Dim == 2) {
+    const double e = 0.5 * (s.b(0, 0) - s.b(1, 1));
+    top = m + std::sqrt(e * e + s.b(0, 1) * s.b(0, 1));
+  } else {
+    const Matrix<3> dev = s.b - m * Matrix<3>::Identity();
+    const double p = std::sqrt(dev.squaredNorm() / 6);
+    double bottom = m;
+    if (p > 0) {
+      const double r = std::clamp((dev / p).determinant() / 2, -1.0, 1.0);
+      const double phi = std::acos(r) / 3;
+      top = m + 2 * p * std::cos(phi);
+      bottom = m + 2 * p * std::cos(phi + 2 * std::numbers::pi / 3);
+    }
+    middle = 3 * m - top - bottom;
+  }
+  // The smallest from det b = det(F)^2.
+  const double rest = Dim == 2 ? top : top * middle;
+  s.lambda[0] = top;
+  s.log_sigma[0] = 0.5 * std::log(top);
+  if constexpr (Dim == 3) {
+    s.lambda[1] = middle;
+    s.log_sigma[1] = 0.5 * std::log(middle);
+  }
+  s.lambda[Dim - 1] = det * det / rest;
+  s.log_sigma[Dim - 1] = det > 0 ? std::log(det) - 0.5 * std::log(rest) : std::numeric_limits<double>::quiet_NaN();
+  return s;
+}
+
+// log V = log(b) / 2 (the Hencky strain tensor) from a spectrum with det F > 0.
+template <int Dim>
+Matrix<Dim> log_left_stretch(const StretchSpectrum<Dim>& s) {
+  const Matrix<Dim> I = Matrix<Dim>::Identity();
+  const double a = s.lambda[0], b = s.lambda[1];
+  if constexpr (Dim == 2) {
+    const double ab = a == b ? 1 / b : 2 * (s.log_sigma[0] - s.log_sigma[1]) / (a - b);
+    return 0.5 * (2 * s.log_sigma[0] * I + ab * (s.b - a * I));
+  } else {
+    const double c = s.lambda[2];
+    const auto first = [](double x, double y) { return x == y ? 1 / y : std::log1p((x - y) / y) / (x - y); };
+    const double ab = first(a, b);
+    double abc;
+    if (std::abs(a - c) < 1e-4 * c) {
+      // log''/2 + log'''/6 (u + v) + log''''/24 (u^2 + u v + v^2) about b, u = a - b, v = c - b
+      const double u = a - b, v = c - b, ib = 1 / b;
+      abc = ib * ib * (-0.5 + ib * ((u + v) / 3 - ib * (u * u + u * v + v * v) / 4));
+    } else {
+      abc = (ab - first(b, c)) / (a - c);
+    }
+    const Matrix<3> A = s.b - a * I;
+    return 0.5 * (2 * s.log_sigma[0] * I + ab * A + abc * (A * (s.b - b * I)));
+  }
+}
+
+}  // namespace suite::mpm2grid
