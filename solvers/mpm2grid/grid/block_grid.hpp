@@ -204,8 +204,10 @@ class BlockGrid {
 template <int Dim>
 struct NodeFields {
   std::vector<double> mass;        // kg (per metre of thickness in 2D)
-  std::vector<Vec<Dim>> momentum;  // kg m/s: sum_p w_ip m_p (v_p + C_p (x_i - x_p))
-  std::vector<Vec<Dim>> force;     // N: internal + gravity
+  std::vector<Vec<Dim>> momentum;  // kg m/s: sum_p w_ip m_p (v_p + C_p (x_i - x_p)), plus dt
+                                   // times the particles' forces where P2G folds them in
+                                   // (P2GSources::fold_dt, transfer/apic.hpp)
+  std::vector<Vec<Dim>> force;     // N: the particles' forces (unless folded), gravity, loads
   std::vector<Vec<Dim>> velocity;  // m/s after the grid solve
   std::vector<double> drag;        // kg/s: sum_p c_E,p V_p w_ip (soil only)
   std::vector<double> pressure;    // water only, with buoyancy: sum_p w_ip m_p p_p after P2G,

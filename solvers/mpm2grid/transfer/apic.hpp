@@ -119,7 +119,8 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
                        NodeFields<Dim>& nodes) {
   if ((in.tau && in.pressure) || (in.drag && in.pressure) || (!in.solid_volume != !in.node_pressure))
     throw std::invalid_argument(
-        "particles_to_grid: tau or pressure, drag or pressure, and buoyancy's two inputs together");
+        "particles_to_grid: give tau or pressure (not both), drag or pressure (not both), and solid_volume "
+        "together with node_pressure");
   if (in.fold_dt > 0)
     detail::particles_to_grid<true>(P, in, grid, nodes);
   else
