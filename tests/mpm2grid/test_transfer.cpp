@@ -273,22 +273,26 @@ TYPED_TEST(Transfer, TiledTransfersEqualTheNodeByNodeSums) {
       }
     }
   // G2P of an arbitrary velocity field against v = sum w v_i, B = sum w v_i (x_i - x_p)^T, G =
-  // sum v_i grad w^T.
+  // sum v_i grad w^T, and of a scalar field (the saturation's water masses) against sum w f_i.
   NodeFields<Dim> nodes;
   nodes.reset(grid.nodes());
   for (auto& v : nodes.velocity) v = random_point<Dim>(rng, -2.0, 2.0);
   std::vector<Mat<Dim>> grad_v;
+  std::vector<double> sampled;
   const auto x = P.x;
-  grid_to_particles(P, grid, nodes, grad_v);
+  grid_to_particles(P, grid, nodes, grad_v, &node_pressure, &sampled);
   std::array<long, BlockGrid<Dim>::kNodes> slots;
   for (std::size_t p = 0; p < P.size(); ++p) {
     const Stencil<Dim> st(x[p], h);
     grid.stencil_slots(st, slots);
     Vec<Dim> v = Vec<Dim>::Zero();
     Mat<Dim> B = Mat<Dim>::Zero(), G = Mat<Dim>::Zero();
+    double f = 0;
     int n = 0;
     st.for_each([&](const Index<Dim>& k, const Index<Dim>& node) {
-      const Vec<Dim>& vi = nodes.velocity[static_cast<std::size_t>(slots[static_cast<std::size_t>(n++)])];
+      const auto i = static_cast<std::size_t>(slots[static_cast<std::size_t>(n++)]);
+      const Vec<Dim>& vi = nodes.velocity[i];
+      f += st.weight(k) * node_pressure[i];
       Vec<Dim> xi;
       for (int d = 0; d < Dim; ++d) xi[d] = node[d] * h;
       v += st.weight(k) * vi;
@@ -299,6 +303,7 @@ TYPED_TEST(Transfer, TiledTransfersEqualTheNodeByNodeSums) {
     ASSERT_LT((P.v[p] - v).norm(), kRoundOff * 2);
     ASSERT_LT((P.C[p] - apic_inverse_d(h) * B).norm(), kRoundOff * 2 / h);
     ASSERT_LT((grad_v[p] - G).norm(), kRoundOff * 2 / h);
+    ASSERT_NEAR(sampled[p], f, kRoundOff * 2e3);  // node values up to 2e3
   }
 }
 

@@ -143,7 +143,6 @@ void Simulation<Dim>::step(double dt) {
   if (inlet_) inlet_->impose(grid_, water_nodes_, t_next);
   if (dd_) dd_->copy_to_ghosts(soil_nodes_, water_nodes_);
   update_particles(dt);
-  update_saturation();
   remove_outflow();
   // The inlet's state is the same on every rank; rank 0 adds its particles, migrate() sends them
   // to their owners.
@@ -244,9 +243,14 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::update_particles(double dt) {
     if (!s_.mixture) water_.J[p] *= 1 + dt * grad_v_[p].trace();
     s_.walls.clamp(water_.x[p]);
   }
-  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_);
+  // The soil's saturation (see the header) from the water grid's masses, sampled with the
+  // velocities at the positions they were spread from: the return mapping's cohesion is the
+  // step's own. The sweep leaves the mass sums sum_i w_ip m_w,i in `saturation`.
+  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_nodes_.mass, &soil_.saturation);
+  const double full = s_.water.density * std::pow(s_.h, Dim) * s_.soil.porosity;  // kg in a node's pores
   known_stress_.resize(soil_.size());
   for (std::size_t p = 0; p < soil_.size(); ++p) {
+    soil_.saturation[p] = std::clamp(soil_.saturation[p] / full, 0.0, 1.0);
     soil_.x[p] += dt * soil_.v[p];
     const Mat<Dim> trial = (I + dt * grad_v_[p]) * soil_.F[p];
     const auto r = s_.soil.material.template project<Dim>(trial, soil_.log_jp[p], soil_.saturation[p]);
@@ -256,24 +260,6 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::update_particles(double dt) {
     if (r.has_stress) known_stress_[p].F = r.F, known_stress_[p].tau = r.stress;
     s_.walls.clamp(soil_.x[p]);
   }
-}
-
-template <int Dim>
-SUITE_VECTOR_CLONES void Simulation<Dim>::update_saturation() {
-  if (soil_.size() == 0) return;
-  const double h = s_.h, node_volume = std::pow(h, Dim);
-  const double full = s_.water.density * node_volume * s_.soil.porosity;
-  // At the particles' new positions: their stencils may reach blocks that are not active, whose
-  // nodes hold no water.
-  using Tile = NodeTile<Dim, 1>;
-  auto tile = std::make_unique<Tile>();
-  const auto enter = [&] { tile->gather(0, water_nodes_.mass); };
-  sweep_groups(
-      soil_.x, grid_, *tile, enter, [] {},
-      [&](std::size_t p, const StencilRows<Dim>& st, int first) {
-        const double phi = sample_field<false, false>(*tile, 0, st, first).value;
-        soil_.saturation[p] = std::clamp(phi / full, 0.0, 1.0);
-      });
 }
 
 template <int Dim>

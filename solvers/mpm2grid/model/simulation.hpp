@@ -7,13 +7,13 @@
 //   3. the drag-coupled grid velocity solve (coupling/drag_solve.hpp);
 //   4. wall conditions on both grids;
 //   5. G2P per species, positions, F_E (soil, then the Drucker-Prager return mapping with the
-//      cohesion of the particle's saturation) and J (water);
+//      cohesion of the particle's saturation, sampled in the soil's G2P) and J (water);
 //   6. particles that left through an open side are removed and booked as outflow; the inlet
 //      (boundary/inlet.hpp), if any, emits the water layers due (after setting the inflow
 //      velocity on its face's water nodes in step 4).
 // Saturation: the water grid's volume fraction phi_i = m_w,i / (rho_w h^Dim), and a soil
 // particle's S = clamp(sum_i w_ip phi_i / n, 0, 1), n the soil's porosity: pores full of water
-// give S = 1.
+// give S = 1. w_ip at the step's start, the positions the water grid was built from.
 // Over several ranks (a communicator of more than one rank), each rank steps the particles of
 // the grid blocks it owns, with a reverse halo sum after each species' P2G, one forward halo
 // copy after the grid solve and the particles' migration to their new owners (decomposition/)
@@ -174,7 +174,6 @@ class Simulation {
   void particles_to_grids(double dt);
   void spread(const Particles<Dim>& P, const P2GSources<Dim>& in, NodeFields<Dim>& nodes);
   void update_particles(double dt);
-  void update_saturation();
   void remove_outflow();
   void solve_grid(double dt);
   void add_loads();

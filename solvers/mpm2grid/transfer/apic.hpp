@@ -127,18 +127,25 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
     detail::particles_to_grid<false>(P, in, grid, nodes);
 }
 
-// Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized).
+// Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized), and,
+// with `field`, sum_i w_ip field_i per particle into `at_particles` (resized) in the same sweep
+// (the soil's saturation from the water's node masses).
 template <int Dim>
 void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
-                       std::vector<Mat<Dim>>& grad_v) {
-  using Tile = NodeTile<Dim, Dim>;  // velocity
+                       std::vector<Mat<Dim>>& grad_v, const std::vector<double>* field = nullptr,
+                       std::vector<double>* at_particles = nullptr) {
+  if (!field != !at_particles) throw std::invalid_argument("grid_to_particles: a field to sample needs its output");
+  using Tile = NodeTile<Dim, Dim + 1>;  // velocity, the sampled field
   auto tile = std::make_unique<Tile>();
   const double inverse_d = apic_inverse_d(grid.spacing());
   grad_v.resize(P.size());
+  if (at_particles) at_particles->resize(P.size());
   const auto enter = [&] {
     tile->zero();
     tile->for_each_node([&](int t, long slot) {
-      for (int a = 0; a < Dim; ++a) tile->field(a)[t] = nodes.velocity[static_cast<std::size_t>(slot)][a];
+      const auto i = static_cast<std::size_t>(slot);
+      for (int a = 0; a < Dim; ++a) tile->field(a)[t] = nodes.velocity[i][a];
+      if (field) tile->field(Dim)[t] = (*field)[i];
     });
   };
   sweep_groups(
@@ -150,6 +157,7 @@ void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const Node
           P.C[p].row(a) = inverse_d * va.moment.transpose();
           grad_v[p].row(a) = va.gradient.transpose();
         }
+        if (field) (*at_particles)[p] = sample_field<false, false>(*tile, Dim, s, first).value;
       });
 }
 
