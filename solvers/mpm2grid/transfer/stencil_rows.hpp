@@ -112,32 +112,43 @@ struct FieldSample {
   Vec<Dim> gradient = Vec<Dim>::Zero();
 };
 
-// Samples tile field f at a particle whose stencil starts at tile index `first`.
+// Samples tile field f at a particle whose stencil starts at tile index `first`. The sums over
+// the rows are vector values in a fully unrolled loop, so that the compiler keeps them in
+// registers (as arrays updated through memory they made a chain of stores and reloads per row:
+// 1.2x on the 3D step); the same operations in the same order as axpy4's.
 template <bool Moment, bool Gradient, int Dim, int Fields>
 FieldSample<Dim> sample_field(const NodeTile<Dim, Fields>& tile, int f, const StencilRows<Dim>& s, int first) {
   using Tile = NodeTile<Dim, Fields>;
+  using rows::Four;
   constexpr int kCross = StencilRows<Dim>::kCross;
-  alignas(32) double P[4] = {0, 0, 0, 0};  // sum_r W_r F_ri
-  alignas(32) double Q[kCross][4] = {};    // sum_r W_r o_r F_ri (moments across)
-  alignas(32) double D[kCross][4] = {};    // sum_r dW_r F_ri (gradient across)
+  Four P{};          // sum_r W_r F_ri
+  Four Q[kCross]{};  // sum_r W_r o_r F_ri (moments across)
+  Four D[kCross]{};  // sum_r dW_r F_ri (gradient across)
   const double* F = tile.field(f) + first;
+#pragma GCC unroll 16
   for (int r = 0; r < StencilRows<Dim>::kRows; ++r) {
-    const double* row = F + Tile::row_offset(r);
-    rows::axpy4(P, s.w[r], row);
+    Four row;
+    std::memcpy(&row, F + Tile::row_offset(r), sizeof row);
+    P += s.w[r] * row;
     for (int e = 0; e < kCross; ++e) {
-      if constexpr (Moment) rows::axpy4(Q[e], s.wo[e][r], row);
-      if constexpr (Gradient) rows::axpy4(D[e], s.dw[e][r], row);
+      if constexpr (Moment) Q[e] += s.wo[e][r] * row;
+      if constexpr (Gradient) D[e] += s.dw[e][r] * row;
     }
   }
+  const auto dot = [](const double* a, const Four& b) {
+    alignas(32) double v[4];
+    std::memcpy(v, &b, sizeof v);
+    return rows::dot4(a, v);
+  };
   FieldSample<Dim> out;
-  out.value = rows::dot4(s.wx, P);
+  out.value = dot(s.wx, P);
   if constexpr (Moment) {
-    out.moment[0] = rows::dot4(s.wxo, P);
-    for (int e = 0; e < kCross; ++e) out.moment[1 + e] = rows::dot4(s.wx, Q[e]);
+    out.moment[0] = dot(s.wxo, P);
+    for (int e = 0; e < kCross; ++e) out.moment[1 + e] = dot(s.wx, Q[e]);
   }
   if constexpr (Gradient) {
-    out.gradient[0] = rows::dot4(s.dwx, P);
-    for (int e = 0; e < kCross; ++e) out.gradient[1 + e] = rows::dot4(s.wx, D[e]);
+    out.gradient[0] = dot(s.dwx, P);
+    for (int e = 0; e < kCross; ++e) out.gradient[1 + e] = dot(s.wx, D[e]);
   }
   return out;
 }
