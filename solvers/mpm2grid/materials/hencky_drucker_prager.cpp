@@ -51,7 +51,9 @@ double HenckyDruckerPrager::p_wave_speed(double density) const {
 template <int Dim>
 Matrix<Dim> HenckyDruckerPrager::kirchhoff(const Matrix<Dim>& F_E) const {
   const StretchSpectrum<Dim> s = stretch_spectrum<Dim>(F_E);
-  return hencky_stress<Dim>(log_left_stretch<Dim>(s), s.log_sigma.sum());
+  if (s.accurate && s.log_sigma.allFinite()) return hencky_stress<Dim>(log_left_stretch<Dim>(s), s.log_sigma.sum());
+  const LeftStretch<Dim> b = left_stretch<Dim>(F_E);  // NaN for an inverted F, as the SVD gives
+  return kirchhoff<Dim>(b.U, b.log_sigma);
 }
 
 template <int Dim>
@@ -119,7 +121,8 @@ ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, doubl
     // The yield test needs the principal strains alone, and an elastic return's stress the
     // strain tensor from them (log_stretch.hpp): the principal directions only for a plastic one.
     const StretchSpectrum<Dim> s = stretch_spectrum<Dim>(F_trial);
-    if (return_strain<Dim>((s.log_sigma.array() + shift / Dim).matrix(), saturation).kind == ReturnCase::elastic) {
+    if (s.accurate &&
+        return_strain<Dim>((s.log_sigma.array() + shift / Dim).matrix(), saturation).kind == ReturnCase::elastic) {
       // U exp(eps + shift/Dim) V^T = exp(shift/Dim) F_trial: no round-off from U.
       ReturnResult<Dim> out;
       out.F = shift == 0 ? F_trial : (std::exp(shift / Dim) * F_trial).eval();

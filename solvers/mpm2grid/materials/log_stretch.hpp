@@ -11,7 +11,7 @@
 // 2 pi / 3), lambda_2 = 3 m - lambda_1 - lambda_3. Where two eigenvalues meet, phi is sensitive
 // (error about sqrt(machine epsilon) times p), but then the strain below hardly depends on them
 // (see there). The smallest is taken from det b = det(F)^2 instead, which keeps it to relative
-// round-off for nearly flat F.
+// round-off for nearly flat F; two small ones are left to the eigen-solver (`accurate`).
 //
 // log b as a polynomial in b: Newton's interpolation of log at the eigenvalues a >= b' [>= c],
 //   log b = log(a) I + log[a, b'] (b - a I) [+ log[a, b', c] (b - a I)(b - b' I)],
@@ -39,6 +39,11 @@ struct StretchSpectrum {
   Matrix<Dim> b;
   Vector<Dim> lambda;     // eigenvalues of b (sigma^2)
   Vector<Dim> log_sigma;  // log(sigma) = log(lambda) / 2; NaN when det F <= 0 (inverted)
+  // False where the closed form loses digits: in 3D with two eigenvalues far below the third
+  // (log V's error grows as about 1e-2 eps (lambda_1 / lambda_2)^2: 8e-9 at lambda_2 = 2.5e-5
+  // lambda_1, 7e-4 at 1e-7). Below lambda_2 = 1e-2 lambda_1 (a stretch under a tenth of the
+  // largest, far beyond any elastic soil state) callers take the eigen-solver (left_stretch).
+  bool accurate = true;
 };
 
 template <int Dim>
@@ -70,6 +75,7 @@ StretchSpectrum<Dim> stretch_spectrum(const Matrix<Dim>& F) {
   if constexpr (Dim == 3) {
     s.lambda[1] = middle;
     s.log_sigma[1] = 0.5 * std::log(middle);
+    s.accurate = middle > 1e-2 * top;
   }
   s.lambda[Dim - 1] = det * det / rest;
   s.log_sigma[Dim - 1] = det > 0 ? std::log(det) - 0.5 * std::log(rest) : std::numeric_limits<double>::quiet_NaN();
