@@ -16,7 +16,8 @@
 // project() need only U and sigma, which left_stretch() (materials/polar_svd.hpp) gives faster
 // than a full SVD in 3D (from F F^T = U diag(sigma^2) U^T), and V^T = diag(1/sigma) U^T F. An
 // elastic state's tau = 2 mu log V + lambda tr(eps) I needs not even U: log V comes from the
-// eigenvalues of F F^T alone (materials/log_stretch.hpp), and only plastic returns find U.
+// eigenvalues of F F^T alone (materials/log_stretch.hpp), and only plastic returns (and 3D
+// states with a middle stretch under a tenth of the largest) find U.
 //
 // Plasticity (compression positive). With bulk modulus K = lambda + 2 mu / Dim and
 //   p = -K tr(eps)                       pressure, Pa  (= -tr(tau) / Dim)
