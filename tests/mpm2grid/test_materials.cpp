@@ -635,6 +635,21 @@ TYPED_TEST(WaterTest, StressesFromPressure) {
   EXPECT_LE((w.template kirchhoff<Dim>(J) + J * p * I).norm(), 1e-14 * p);
 }
 
+// J^-gamma by repeated squaring for whole gammas up to 16 against pow: a squaring doubles its
+// operand's relative error and adds half an ulp, so J^n carries at most about n/2 ulp, the
+// division half one more: (n + 1) / 2 ulp, (n + 1) 1.2e-16 relative. Other gammas go to pow itself.
+TEST(Water, InversePowerIsPow) {
+  for (int n = 1; n <= 16; ++n) {
+    const WeaklyCompressibleWater w = WeaklyCompressibleWater::make(kWaterK, n);
+    for (double J = 0.8; J < 1.25; J += 0.0137)
+      EXPECT_LE(rel_err(w.inverse_power(J), std::pow(J, -n)), (n + 1) * 1.2e-16) << n << " " << J;
+  }
+  for (const double gamma : {6.5, 17.0, 1e20}) {
+    const WeaklyCompressibleWater w = WeaklyCompressibleWater::make(kWaterK, gamma);
+    EXPECT_EQ(w.inverse_power(0.97), std::pow(0.97, -gamma));
+  }
+}
+
 TYPED_TEST(WaterTest, TensionClamp) {
   constexpr int Dim = TypeParam::value;
   const double J = 1.1, raw = kWaterK * (std::pow(J, -7.0) - 1);  // ~ -4.9e4 Pa: tension
