@@ -1,7 +1,7 @@
 #pragma once
 // The Hencky strain of a deformation gradient from the eigenvalues of b = F F^T alone, without
 // its eigenvectors: what an elastic soil particle needs (its Kirchhoff stress is a function of
-// log V, V = sqrt(b) the left stretch). In 3D about 3x cheaper than the eigen-solver of
+// log V, V = sqrt(b) the left stretch). In 3D about 2x cheaper than the eigen-solver of
 // left_stretch() (polar_svd.hpp), which plastic returns still use for their principal
 // directions; in 2D it saves left_stretch()'s half-angle square roots.
 //
