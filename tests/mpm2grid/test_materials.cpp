@@ -126,30 +126,44 @@ TYPED_TEST(RotationSvdTest, InvertedElementPutsTheSignOnTheSmallestValue) {
   for (int i = 0; i + 1 < Dim; ++i) EXPECT_GT(s.sigma(i), 0.0);
 }
 
+// Deformation gradients on which the stretch decompositions are compared with the SVD: equal
+// stretches (exactly, soil at rest, and to 1e-9 and 1e-6, where eigenvectors are ill-defined but
+// U (.) U^T is not and the 3D closed-form eigenvalues lose half their digits), two equal and one
+// apart, apart by about the 3D series' threshold (log_stretch.hpp), strongly anisotropic, nearly
+// flat, and random F near and far from a rotation. 2D takes the first and last of each triple.
+template <int Dim>
+std::vector<Matrix<Dim>> stretch_cases(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Matrix<Dim> R = random_rotation<Dim>(rng), Q = random_rotation<Dim>(rng);
+  std::vector<Matrix<Dim>> cases = {Matrix<Dim>::Identity(), 2.5 * Matrix<Dim>::Identity(),
+                                    0.98 * Matrix<Dim>::Identity(), R, 1.1 * R};
+  const std::vector<std::array<double, 3>> stretches = {
+      {1 + 1e-9, 1, 1},        {1, 1 - 1e-6, 1 - 2e-6},   {0.999, 0.999, 0.99}, {1.01, 0.999, 0.999},
+      {1 + 2e-5, 1, 1 - 1e-5}, {1 + 3e-5, 1, 1 - 2.5e-5}, {3.0, 1.6, 0.2},      {3.0, 1.0, 1e-3}};
+  for (const auto& sv : stretches) {
+    Vector<Dim> d;
+    for (int i = 0; i < Dim; ++i) d[i] = sv[static_cast<std::size_t>(Dim == 3 || i == 0 ? i : 2)];
+    cases.push_back(R * d.asDiagonal() * Q.transpose());
+  }
+  for (int k = 0; k < 60; ++k) {
+    const double size = k < 20 ? 0.6 : k < 40 ? 1e-3 : 1e-7;
+    Matrix<Dim> F = Matrix<Dim>::Identity() + size * Matrix<Dim>::NullaryExpr([&] { return u(rng); });
+    if (F.determinant() < 0) F.col(0) *= -1;
+    cases.push_back(R * F);
+  }
+  return cases;
+}
+
 // left_stretch (closed form in 2D, Eigen's symmetric eigen-solver in 3D) against the SVD: the same
 // log-stretches, and U diag(f(log sigma)) U^T (how the Hencky model uses U) the same for a
-// function f that tells the stretches apart; U orthonormal. Cases: the SVD test's, plus equal
-// stretches (exactly and to 1e-9, where eigenvectors are ill-defined but U (.) U^T is not), a
-// strongly anisotropic F and a nearly flattened one. Both are backward stable: 1e-12 as above.
-// An inverted F gives NaN log-stretches, as the SVD's negative value does.
+// function f that tells the stretches apart; U orthonormal; on stretch_cases(). Both are
+// backward stable: 1e-12 as above. An inverted F gives NaN log-stretches, as the SVD's negative
+// value does.
 TYPED_TEST(RotationSvdTest, LeftStretchAgreesWithTheSvd) {
   constexpr int Dim = TypeParam::value;
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1, 1);
-  const Matrix<Dim> R = random_rotation<Dim>(rng), Q = random_rotation<Dim>(rng);
-  std::vector<Matrix<Dim>> cases = {Matrix<Dim>::Identity(), 2.5 * Matrix<Dim>::Identity(), R, 1.1 * R};
-  Vector<Dim> sv = Vector<Dim>::Constant(1.0);
-  sv(0) = 1 + 1e-9;
-  cases.push_back(R * sv.asDiagonal() * Q.transpose());
-  sv = Vector<Dim>::LinSpaced(Dim, 3.0, 0.2);
-  cases.push_back(R * sv.asDiagonal() * Q.transpose());
-  sv(Dim - 1) = 1e-3;
-  cases.push_back(R * sv.asDiagonal() * Q.transpose());
-  for (int k = 0; k < 40; ++k) {
-    Matrix<Dim> F = Matrix<Dim>::Identity() + (k < 20 ? 0.6 : 1e-4) * Matrix<Dim>::NullaryExpr([&] { return u(rng); });
-    if (F.determinant() < 0) F.col(0) *= -1;
-    cases.push_back(F);
-  }
+  const std::vector<Matrix<Dim>> cases = stretch_cases<Dim>(rng);
+  const Matrix<Dim> R = random_rotation<Dim>(rng);
   const auto f = [](const Vector<Dim>& e) { return Vector<Dim>((2 * e.array() + 0.7 * e.sum()).matrix()); };
   for (const Matrix<Dim>& F : cases) {
     const RotationSvd<Dim> svd = rotation_svd<Dim>(F);
@@ -170,30 +184,12 @@ TYPED_TEST(RotationSvdTest, LeftStretchAgreesWithTheSvd) {
 }
 
 // The Hencky strain from the eigenvalues of F F^T alone (log_stretch.hpp) against the SVD's
-// U diag(log sigma) U^T: equal stretches (soil at rest), stretches equal to 1e-9 and 1e-6 (where
-// the closed-form eigenvalues lose half their digits in 3D), two equal and one apart, apart by
-// about the 3D series' threshold, anisotropic, nearly flat, and random F near and far from a
-// rotation. Round-off of |log V|: 1e-12.
+// U diag(log sigma) U^T on stretch_cases(). Round-off of |log V|: 1e-12.
 TYPED_TEST(RotationSvdTest, LogStretchAgreesWithTheSvd) {
   constexpr int Dim = TypeParam::value;
   std::mt19937 rng(9);
-  std::uniform_real_distribution<double> u(-1, 1);
+  const std::vector<Matrix<Dim>> cases = stretch_cases<Dim>(rng);
   const Matrix<Dim> R = random_rotation<Dim>(rng), Q = random_rotation<Dim>(rng);
-  std::vector<Matrix<Dim>> cases = {Matrix<Dim>::Identity(), 0.98 * Matrix<Dim>::Identity(), R, 1.1 * R};
-  const std::vector<std::array<double, 3>> stretches = {
-      {1 + 1e-9, 1, 1},        {1, 1 - 1e-6, 1 - 2e-6},   {0.999, 0.999, 0.99}, {1.01, 0.999, 0.999},
-      {1 + 2e-5, 1, 1 - 1e-5}, {1 + 3e-5, 1, 1 - 2.5e-5}, {3.0, 1.6, 0.2},      {3.0, 1.0, 1e-3}};
-  for (const auto& sv : stretches) {
-    Vector<Dim> d;
-    for (int i = 0; i < Dim; ++i) d[i] = sv[static_cast<std::size_t>(Dim == 3 || i == 0 ? i : 2)];
-    cases.push_back(R * d.asDiagonal() * Q.transpose());
-  }
-  for (int k = 0; k < 60; ++k) {
-    const double size = k < 20 ? 0.6 : k < 40 ? 1e-3 : 1e-7;
-    Matrix<Dim> F = Matrix<Dim>::Identity() + size * Matrix<Dim>::NullaryExpr([&] { return u(rng); });
-    if (F.determinant() < 0) F.col(0) *= -1;
-    cases.push_back(R * F);
-  }
   const auto deviator = [](const Vector<Dim>& e) { return (e.array() - e.mean()).matrix().norm(); };
   for (const Matrix<Dim>& F : cases) {
     const RotationSvd<Dim> svd = rotation_svd<Dim>(F);

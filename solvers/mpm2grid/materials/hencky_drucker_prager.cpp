@@ -117,39 +117,38 @@ StrainReturn<Dim> HenckyDruckerPrager::return_strain(const Vector<Dim>& eps_tria
 template <int Dim>
 ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const {
   const double shift = volume_correction ? log_jp : 0.0;  // log-volume added to the trial strain
-  {
-    // The yield test needs the principal strains alone, and an elastic return's stress the
-    // strain tensor from them (log_stretch.hpp): the principal directions only for a plastic one.
-    const StretchSpectrum<Dim> s = stretch_spectrum<Dim>(F_trial);
-    if (s.accurate &&
-        return_strain<Dim>((s.log_sigma.array() + shift / Dim).matrix(), saturation).kind == ReturnCase::elastic) {
-      // U exp(eps + shift/Dim) V^T = exp(shift/Dim) F_trial: no round-off from U.
-      ReturnResult<Dim> out;
-      out.F = shift == 0 ? F_trial : (std::exp(shift / Dim) * F_trial).eval();
-      out.log_jp = volume_correction ? 0.0 : log_jp;
-      out.has_stress = shift == 0;
-      if (out.has_stress) out.stress = hencky_stress<Dim>(log_left_stretch<Dim>(s), s.log_sigma.sum());
-      return out;
-    }
-  }
+  // An elastic return: U exp(eps + shift/Dim) V^T = exp(shift/Dim) F_trial, no round-off from U;
+  // log_jp goes to 0 (the trace is kept) or through without the correction; the stress, where
+  // F_E stays F_trial, from stress().
+  const auto elastic = [&](auto&& stress) {
+    ReturnResult<Dim> out;
+    out.F = shift == 0 ? F_trial : (std::exp(shift / Dim) * F_trial).eval();
+    out.log_jp = volume_correction ? 0.0 : log_jp;
+    out.has_stress = shift == 0;
+    if (out.has_stress) out.stress = stress();
+    return out;
+  };
+  // The yield test needs the principal strains alone, and an elastic return's stress the strain
+  // tensor from them (log_stretch.hpp): the principal directions only for a plastic one.
+  const StretchSpectrum<Dim> s = stretch_spectrum<Dim>(F_trial);
+  if (s.accurate &&
+      return_strain<Dim>((s.log_sigma.array() + shift / Dim).matrix(), saturation).kind == ReturnCase::elastic)
+    return elastic([&] { return hencky_stress<Dim>(log_left_stretch<Dim>(s), s.log_sigma.sum()); });
+
   const LeftStretch<Dim> b = left_stretch<Dim>(F_trial);
   const Vector<Dim> eps = (b.log_sigma.array() + shift / Dim).matrix();
   const StrainReturn<Dim> r = return_strain<Dim>(eps, saturation);
+  // Elastic here where the closed form was not accurate or its strains were just outside the cone.
+  if (r.kind == ReturnCase::elastic) return elastic([&] { return kirchhoff<Dim>(b.U, b.log_sigma); });
 
   ReturnResult<Dim> out;
   out.kind = r.kind;
   out.plastic_strain = (eps - r.eps).norm();
-  if (r.kind == ReturnCase::elastic) {  // the closed form's strains were just outside the cone
-    out.F = shift == 0 ? F_trial : (std::exp(shift / Dim) * F_trial).eval();
-    out.has_stress = shift == 0;
-    if (out.has_stress) out.stress = kirchhoff<Dim>(b.U, b.log_sigma);
-  } else {
-    // U exp(eps_new) V^T with V^T = diag(1 / sigma) U^T F_trial.
-    const Vector<Dim> stretch = (r.eps - b.log_sigma).array().exp().matrix();
-    out.F = b.U * stretch.asDiagonal() * b.U.transpose() * F_trial;
-  }
-  // log_jp <- tr(eps shifted) - tr(eps new): exactly 0 for elastic and cone returns (trace
-  // kept), the removed volume for the apex.
+  // U exp(eps_new) V^T with V^T = diag(1 / sigma) U^T F_trial.
+  const Vector<Dim> stretch = (r.eps - b.log_sigma).array().exp().matrix();
+  out.F = b.U * stretch.asDiagonal() * b.U.transpose() * F_trial;
+  // log_jp <- tr(eps shifted) - tr(eps new): exactly 0 for cone returns (trace kept), the removed
+  // volume for the apex.
   if (!volume_correction)
     out.log_jp = log_jp;
   else if (r.kind == ReturnCase::apex)

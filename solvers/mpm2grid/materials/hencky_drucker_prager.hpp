@@ -104,7 +104,7 @@ struct ReturnResult {
   // kirchhoff(F), when project() had it at hand: an elastic return without a volume shift keeps
   // F = F_trial, whose stretches it has computed anyway (has_stress false otherwise).
   bool has_stress = false;
-  Matrix<Dim> stress;
+  Matrix<Dim> stress = Matrix<Dim>::Zero();
 };
 
 // Pressure p (compression positive) and equivalent shear stress q, both Pa.
