@@ -21,6 +21,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -462,6 +463,67 @@ TYPED_TEST(ConsistentDragTest, ModelStepWithTheConsistentDragRelaxesAsTheClosedF
     EXPECT_LT((sim.soil().momentum() + sim.water().momentum() - p0).norm(), 1e-12 * p0.norm());
     EXPECT_GT(sim.drag_stats().iterations, 0);
   }
+}
+
+// g. The domain decomposition over the test's ranks (nothing to decompose on one): a water
+// column collapsing towards a slumping sand block, seeded on rank 0 and distributed. After every
+// step each particle is on the rank owning its home block (migrate() looks up only the particles
+// whose home block changed: one it missed would stay on the wrong rank), and the particle counts
+// and masses summed over the ranks are the seeded ones (closed box: none is lost or doubled).
+TYPED_TEST(ConsistentDragTest, DecomposedStepsKeepEveryParticleAtItsBlocksOwner) {
+  constexpr int Dim = TypeParam::value;
+  const mpi::Comm& comm = environment->comm();
+  SimulationSettings<Dim> s;
+  s.h = 0.1;
+  s.gravity[1] = -9.81;
+  s.walls.lo = Vec<Dim>::Zero(), s.walls.hi = Vec<Dim>::Constant(2.0);
+  s.water.eos.bulk_modulus = 2e4;  // a wave speed of 4.5 m/s: steps of 9 ms, 0.36 s in all
+  s.dt_max = 0.1;
+  s.soil.material = HenckyDruckerPrager::from_young(1e5, 0.3, 30 * M_PI / 180, 0.0, true);
+  Simulation<Dim> sim(s, comm);
+  const auto seed = [&](Particles<Dim>& P, double lo, double hi, double height, double density) {
+    const double spacing = s.h / 2, volume = std::pow(spacing, Dim);
+    Vec<Dim> x;
+    const auto fill = [&](auto&& self, int d) -> void {
+      if (d == Dim) return P.add(x, Vec<Dim>::Zero(), density * volume, volume);
+      const double a = d == 0 ? lo : 0.0, b = d == 0 ? hi : d == 1 ? height : 0.4;
+      for (x[d] = a + spacing / 2; x[d] < b; x[d] += spacing) self(self, d + 1);
+    };
+    if (comm.is_root()) fill(fill, 0);
+  };
+  seed(sim.water(), 0.0, 0.8, 1.2, s.water.density);
+  seed(sim.soil(), 1.2, 1.8, 0.6, s.soil.density);
+  sim.distribute();
+  const auto totals = [&] {
+    return std::array<double, 4>{comm.sum(static_cast<double>(sim.water().size())),
+                                 comm.sum(static_cast<double>(sim.soil().size())), comm.sum(sim.water().total_mass()),
+                                 comm.sum(sim.soil().total_mass())};
+  };
+  const auto seeded = totals();
+  ASSERT_GT(seeded[0], 0);
+  const auto migrated = [&] {
+    return sim.decomposition() ? comm.sum(double(sim.decomposition()->stats().migrated)) : 0.0;
+  };
+  const double distributed = migrated();
+  for (int step = 0; step < 40; ++step) {
+    sim.step(sim.stable_dt().dt);
+    const auto now = totals();
+    EXPECT_EQ(now[0], seeded[0]) << "step " << step;
+    EXPECT_EQ(now[1], seeded[1]) << "step " << step;
+    EXPECT_NEAR(now[2], seeded[2], 1e-12 * seeded[2]) << "step " << step;
+    EXPECT_NEAR(now[3], seeded[3], 1e-12 * seeded[3]) << "step " << step;
+    const auto* dd = sim.decomposition();
+    if (!dd) continue;
+    const auto keys = dd->owned_keys();
+    const std::set<long long> owned(keys.begin(), keys.end());
+    long long misplaced = 0;
+    for (const auto* P : {&sim.water(), &sim.soil()})
+      for (const auto& x : P->x) misplaced += !owned.count(BlockGrid<Dim>::key(BlockGrid<Dim>::home_block(x, s.h)));
+    // Summed over the ranks, so that every rank stops here together (no rank left in a step).
+    ASSERT_EQ(comm.sum(static_cast<double>(misplaced)), 0.0) << "step " << step;
+  }
+  // The steps moved particles between ranks (the water's front crosses the partition).
+  if (sim.decomposition()) EXPECT_GT(migrated(), distributed);
 }
 
 }  // namespace

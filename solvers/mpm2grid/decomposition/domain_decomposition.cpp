@@ -78,7 +78,8 @@ void DomainDecomposition<Dim>::copy_to_ghosts(std::vector<double>& per_slot) {
 }
 
 template <int Dim>
-void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& soil) {
+void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& soil,
+                                       const std::array<std::vector<char>, 2>* left_home) {
   using Key = BlockOwners::Key;
   // Particles in group order (transfer/particle_order.hpp) come in runs with one home block:
   // its owner is looked up once a run.
@@ -90,44 +91,67 @@ void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& so
     if (!looked_up || key != last_key) last_key = key, last_owner = owners_.owner(key), looked_up = true;
     return last_owner;
   };
-  // Each particle's destination, the owner of its home block; blocks without one yet are claimed
-  // first (every rank takes part), then their particles are looked up again.
-  std::array<std::vector<int>, 2> destinations;
+  // The particles that leave this rank, with their destinations: the owners of their home
+  // blocks. Blocks without one yet are claimed first (every rank takes part), then their
+  // particles are looked up again. A particle that kept its home block since the last migration
+  // stays: every one was at its owner then, and owners change only in partition(), which is
+  // followed by a migration of all.
+  const int me = comm_.rank();
   std::vector<Key> unowned;
   const std::array<Particles<Dim>*, 2> species{&water, &soil};
   for (std::size_t k = 0; k < 2; ++k) {
-    auto& destination = destinations[k];
-    destination.resize(species[k]->size());
-    for (std::size_t p = 0; p < destination.size(); ++p)
-      if ((destination[p] = owner_of(species[k]->x[p])) < 0) unowned.push_back(last_key);
+    auto& leaving = leaving_[k];
+    leaving.clear();
+    const Particles<Dim>& P = *species[k];
+    const std::size_t tracked = left_home ? std::min((*left_home)[k].size(), P.size()) : 0;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      if (p < tracked && !(*left_home)[k][p]) continue;
+      const int owner = owner_of(P.x[p]);
+      if (owner == me) continue;
+      if (owner < 0) unowned.push_back(last_key);
+      leaving.push_back({p, owner});
+    }
   }
   std::sort(unowned.begin(), unowned.end());
   unowned.erase(std::unique(unowned.begin(), unowned.end()), unowned.end());
   stats_.claimed_blocks += owners_.claim(comm_, unowned);
   looked_up = false;  // the claims gave owners to blocks that had none
   if (!unowned.empty())
-    for (std::size_t k = 0; k < 2; ++k)
-      for (std::size_t p = 0; p < destinations[k].size(); ++p)
-        if (destinations[k][p] < 0) destinations[k][p] = owner_of(species[k]->x[p]);
+    for (std::size_t k = 0; k < 2; ++k) {
+      for (auto& l : leaving_[k])
+        if (l.to < 0) l.to = owner_of(species[k]->x[l.p]);
+      std::erase_if(leaving_[k], [&](const Leaving& l) { return l.to == me; });  // claimed here
+    }
 
+  // One message per destination: the number of water particles, then the water's and the
+  // soil's packed states.
   const auto ranks = static_cast<std::size_t>(comm_.size());
-  for (std::size_t sp = 0; sp < 2; ++sp) {
-    Particles<Dim>* P = species[sp];
-    const std::vector<int>& destination = destinations[sp];
-    std::vector<std::vector<double>> send(ranks);
-    for (std::size_t p = 0; p < P->size(); ++p) {
-      if (destination[p] == comm_.rank()) continue;
-      P->pack(p, send[static_cast<std::size_t>(destination[p])]);
-      ++stats_.migrated;
+  std::vector<std::vector<double>> send(ranks);
+  for (std::size_t r = 0; r < ranks; ++r) send[r].push_back(0.0);
+  for (std::size_t k = 0; k < 2; ++k) {
+    for (const auto& l : leaving_[k]) {
+      auto& to = send[static_cast<std::size_t>(l.to)];
+      species[k]->pack(l.p, to);
+      if (k == 0) to[0] += 1;
     }
-    for (const auto& s : send) stats_.migration_bytes += static_cast<long long>(s.size() * sizeof(double));
-    P->retain([&](std::size_t p) { return destination[p] == comm_.rank(); });
-    const auto received = all_to_all(comm_, send);
-    for (const auto& from : received) {
-      if (from.size() % Particles<Dim>::kPacked != 0)
-        throw LibraryError("particle migration: a rank sent a partial particle");
-      for (std::size_t k = 0; k < from.size(); k += Particles<Dim>::kPacked) P->add_packed(from.data() + k);
-    }
+    stats_.migrated += static_cast<long long>(leaving_[k].size());
+    if (leaving_[k].empty()) continue;
+    std::size_t next = 0;  // the leaving list is in particle order
+    species[k]->retain([&](std::size_t p) {
+      if (next < leaving_[k].size() && leaving_[k][next].p == p) return ++next, false;
+      return true;
+    });
+  }
+  for (std::size_t r = 0; r < ranks; ++r)
+    if (static_cast<int>(r) != me) stats_.migration_bytes += static_cast<long long>(send[r].size() * sizeof(double));
+  const auto received = all_to_all(comm_, send);
+  constexpr auto kPacked = static_cast<std::size_t>(Particles<Dim>::kPacked);
+  for (const auto& from : received) {
+    const std::size_t water_count = from.empty() ? 0 : static_cast<std::size_t>(from[0]);
+    if (from.empty() || (from.size() - 1) % kPacked != 0 || water_count > (from.size() - 1) / kPacked)
+      throw LibraryError("particle migration: a rank sent a partial particle");
+    for (std::size_t k = 1, n = 0; k < from.size(); k += kPacked, ++n)
+      (n < water_count ? water : soil).add_packed(from.data() + k);
   }
 }
 

@@ -17,6 +17,7 @@
 // held most of its work, and the particles move to their new owners.
 // No rank holds the whole grid or solution: only its blocks, its ghosts and the owner table
 // (one integer per block).
+#include <array>
 #include <vector>
 
 #include "core/mpi/comm.hpp"
@@ -68,8 +69,29 @@ class DomainDecomposition {
   // COLLECTIVE. The same for a per-slot value (the water's node pressure).
   void copy_to_ghosts(std::vector<double>& per_slot);
 
-  // COLLECTIVE. Every particle goes to the rank owning its home block (claimed if new).
-  void migrate(Particles<Dim>& water, Particles<Dim>& soil);
+  // COLLECTIVE. Every particle goes to the rank owning its home block (claimed if new). With
+  // `left_home` (per water and soil particle, 1 where the particle's home block changed since the
+  // last migration), only those particles and the ones after the lists' ends (new ones) are
+  // looked up.
+  void migrate(Particles<Dim>& water, Particles<Dim>& soil,
+               const std::array<std::vector<char>, 2>* left_home = nullptr);
+  // Drops from a per-particle array of the caller's the entries of the particles the last
+  // migrate() sent away from species k (0 water, 1 soil), as migrate() did from the particles;
+  // the caller sizes it for the ones received.
+  template <class T>
+  void drop_sent(std::size_t k, std::vector<T>& values) const {
+    std::size_t n = 0, next = 0;
+    const auto& leaving = leaving_[k];
+    for (std::size_t p = 0; p < values.size(); ++p) {
+      if (next < leaving.size() && leaving[next].p == p) {
+        ++next;
+        continue;
+      }
+      if (n != p) values[n] = values[p];
+      ++n;
+    }
+    values.resize(n);
+  }
   // COLLECTIVE. Partitions when forced (the first distribution) or when the measurement due at
   // this step finds the load above the threshold; then migrates. True when it partitioned.
   bool balance(long long step, Particles<Dim>& water, Particles<Dim>& soil, bool force = false);
@@ -89,6 +111,11 @@ class DomainDecomposition {
   BlockOwners owners_;
   HaloExchange<Dim> halo_;
   DecompositionStats stats_;
+  struct Leaving {
+    std::size_t p;  // the particle's index
+    int to;         // its new owner
+  };
+  std::array<std::vector<Leaving>, 2> leaving_;  // migrate()'s lists (water, soil), kept for their capacity
 };
 
 extern template class DomainDecomposition<2>;

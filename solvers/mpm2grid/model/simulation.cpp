@@ -127,7 +127,7 @@ void Simulation<Dim>::particles_to_grids(double dt) {
 
 template <int Dim>
 void Simulation<Dim>::step(double dt) {
-  if (dd_) dd_->balance(steps_, water_, soil_);
+  if (dd_ && dd_->balance(steps_, water_, soil_)) keep_known_stresses();
   build_grid();
   stresses();
   particles_to_grids(dt);
@@ -147,9 +147,19 @@ void Simulation<Dim>::step(double dt) {
   // The inlet's state is the same on every rank; rank 0 adds its particles, migrate() sends them
   // to their owners.
   if (inlet_) inlet_->emit(t_next, water_, !dd_ || dd_->comm().is_root());
-  if (dd_) dd_->migrate(water_, soil_);
+  if (dd_) {
+    dd_->migrate(water_, soil_, &left_home_);
+    keep_known_stresses();
+  }
   time_ = t_next;
   ++steps_;
+}
+
+// After a migration: the known stresses of the soil particles that stayed, none for the received.
+template <int Dim>
+void Simulation<Dim>::keep_known_stresses() {
+  dd_->drop_sent(1, known_stress_);
+  known_stress_.resize(soil_.size());
 }
 
 // The drag-coupled grid velocities on this rank's nodes (on ghost nodes too, from partial sums:
@@ -236,12 +246,17 @@ void Simulation<Dim>::distribute() {
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::update_particles(double dt) {
   const Mat<Dim> I = Mat<Dim>::Identity();
+  // Over several ranks, which particles the move takes to another home block.
+  const auto home = [h = s_.h](const Vec<Dim>& x) { return BlockGrid<Dim>::home_block(x, h); };
+  for (std::size_t k = 0; k < 2; ++k) left_home_[k].assign(dd_ ? (k == 0 ? water_ : soil_).size() : 0, 0);
   grid_to_particles(water_, grid_, water_nodes_, grad_v_);
   if (s_.mixture) mixture_volume_rates(dt);
   for (std::size_t p = 0; p < water_.size(); ++p) {
+    const Index<Dim> from = dd_ ? home(water_.x[p]) : Index<Dim>{};
     water_.x[p] += dt * water_.v[p];
     if (!s_.mixture) water_.J[p] *= 1 + dt * grad_v_[p].trace();
     s_.walls.clamp(water_.x[p]);
+    if (dd_) left_home_[0][p] = home(water_.x[p]) != from;
   }
   // The soil's saturation (see the header) from the water grid's masses, sampled with the
   // velocities at the positions they were spread from: the return mapping's cohesion is the
@@ -251,6 +266,7 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::update_particles(double dt) {
   known_stress_.resize(soil_.size());
   for (std::size_t p = 0; p < soil_.size(); ++p) {
     soil_.saturation[p] = std::clamp(soil_.saturation[p] / full, 0.0, 1.0);
+    const Index<Dim> from = dd_ ? home(soil_.x[p]) : Index<Dim>{};
     soil_.x[p] += dt * soil_.v[p];
     const Mat<Dim> trial = (I + dt * grad_v_[p]) * soil_.F[p];
     const auto r = s_.soil.material.template project<Dim>(trial, soil_.log_jp[p], soil_.saturation[p]);
@@ -259,22 +275,29 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::update_particles(double dt) {
     known_stress_[p].known = r.has_stress;
     if (r.has_stress) known_stress_[p].F = r.F, known_stress_[p].tau = r.stress;
     s_.walls.clamp(soil_.x[p]);
+    if (dd_) left_home_[1][p] = home(soil_.x[p]) != from;
   }
 }
 
 template <int Dim>
 void Simulation<Dim>::remove_outflow() {
   Outflow<Dim> step;  // this step's, on this rank
-  auto book = [&](Particles<Dim>& P, double& mass) {
-    P.retain([&](std::size_t p) {
+  auto keep = [&](Particles<Dim>& P, double& mass) {
+    return [&](std::size_t p) {
       if (!s_.walls.left_through_open_side(P.x[p])) return true;
       mass += P.mass[p];
       step.momentum += P.mass[p] * P.v[p];
       return false;
-    });
+    };
   };
-  book(water_, step.water_mass);
-  book(soil_, step.soil_mass);
+  // The per-particle lists of this step go with their particles.
+  if (dd_) {
+    water_.retain(keep(water_, step.water_mass), left_home_[0]);
+    soil_.retain(keep(soil_, step.soil_mass), left_home_[1], known_stress_);
+  } else {
+    water_.retain(keep(water_, step.water_mass));
+    soil_.retain(keep(soil_, step.soil_mass), known_stress_);
+  }
   if (dd_) {  // the record is the same on every rank
     std::array<double, 2 + Dim> all{};
     all[0] = step.water_mass, all[1] = step.soil_mass;

@@ -175,6 +175,7 @@ class Simulation {
   void spread(const Particles<Dim>& P, const P2GSources<Dim>& in, NodeFields<Dim>& nodes);
   void update_particles(double dt);
   void remove_outflow();
+  void keep_known_stresses();
   void solve_grid(double dt);
   void add_loads();
   void solid_fractions();
@@ -194,6 +195,9 @@ class Simulation {
     Mat<Dim> F, tau;
   };
   std::vector<KnownStress> known_stress_;
+  // Over several ranks, per water and soil particle: 1 where the step's move took it to another
+  // home block (only these can have left this rank's blocks; migrate() looks up just them).
+  std::array<std::vector<char>, 2> left_home_;
   std::optional<mpi::Comm> comm_;
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;
   SolveStats drag_stats_{};

@@ -44,9 +44,10 @@ struct Particles {
     id.push_back(next_id++);
   }
 
-  // Keeps the particles for which keep(p) is true, in order.
-  template <class Keep>
-  void retain(Keep&& keep) {
+  // Keeps the particles for which keep(p) is true, in order; the caller's own per-particle arrays
+  // (`along`) are compacted with them.
+  template <class Keep, class... Along>
+  void retain(Keep&& keep, std::vector<Along>&... along) {
     std::size_t n = 0;
     for (std::size_t p = 0; p < size(); ++p) {
       if (!keep(p)) continue;
@@ -54,11 +55,13 @@ struct Particles {
         x[n] = x[p], v[n] = v[p], C[n] = C[p], mass[n] = mass[p], volume0[n] = volume0[p];
         F[n] = F[p], J[n] = J[p], log_jp[n] = log_jp[p], saturation[n] = saturation[p], load[n] = load[p];
         id[n] = id[p];
+        ((along[n] = along[p]), ...);
       }
       ++n;
     }
     x.resize(n), v.resize(n), C.resize(n), mass.resize(n), volume0.resize(n);
     F.resize(n), J.resize(n), log_jp.resize(n), saturation.resize(n), load.resize(n), id.resize(n);
+    (along.resize(n), ...);
   }
 
   // Puts the particles in a new order: permute(values) is called on each per-particle array and
