@@ -523,7 +523,9 @@ TYPED_TEST(ConsistentDragTest, DecomposedStepsKeepEveryParticleAtItsBlocksOwner)
     ASSERT_EQ(comm.sum(static_cast<double>(misplaced)), 0.0) << "step " << step;
   }
   // The steps moved particles between ranks (the water's front crosses the partition).
-  if (sim.decomposition()) EXPECT_GT(migrated(), distributed);
+  if (sim.decomposition()) {
+    EXPECT_GT(migrated(), distributed);
+  }
 }
 
 }  // namespace
