@@ -282,11 +282,11 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::update_particles(double dt) {
 template <int Dim>
 void Simulation<Dim>::remove_outflow() {
   Outflow<Dim> step;  // this step's, on this rank
-  auto keep = [&](Particles<Dim>& P, double& mass) {
-    return [&](std::size_t p) {
-      if (!s_.walls.left_through_open_side(P.x[p])) return true;
-      mass += P.mass[p];
-      step.momentum += P.mass[p] * P.v[p];
+  auto keep = [&](const Particles<Dim>& species, double& species_mass) {
+    return [this, &step, P = &species, mass = &species_mass](std::size_t p) {
+      if (!s_.walls.left_through_open_side(P->x[p])) return true;
+      *mass += P->mass[p];
+      step.momentum += P->mass[p] * P->v[p];
       return false;
     };
   };
