@@ -1,8 +1,9 @@
 // The pieces of the domain decomposition (decomposition/) that need no second rank: the METIS
-// partition of a block graph balances both species' particle counts within METIS's tolerance
-// (1%, plus one block) and keeps each part in one piece; keep_ranks renames parts so that work stays where it
-// was; block keys round-trip; a particle's packed state round-trips exactly. The decomposition
-// over ranks as a whole is tested end to end (1 vs 2 ranks, run_ranks_agree.sh).
+// partition of a block graph balances both species' particle counts within the tolerance it is
+// given (1%, plus one block) and keeps each part in one piece; keep_ranks renames parts so that
+// work stays where it was; block keys round-trip; a particle's packed state round-trips exactly.
+// The decomposition over ranks as a whole is tested end to end (1 vs 2 ranks,
+// run_ranks_agree.sh, and the decomposed steps in test_consistent_drag.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -136,11 +136,7 @@ void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& so
     }
     stats_.migrated += static_cast<long long>(leaving_[k].size());
     if (leaving_[k].empty()) continue;
-    std::size_t next = 0;  // the leaving list is in particle order
-    species[k]->retain([&](std::size_t p) {
-      if (next < leaving_[k].size() && leaving_[k][next].p == p) return ++next, false;
-      return true;
-    });
+    species[k]->retain(staying(k));
   }
   for (std::size_t r = 0; r < ranks; ++r)
     if (static_cast<int>(r) != me) stats_.migration_bytes += static_cast<long long>(send[r].size() * sizeof(double));

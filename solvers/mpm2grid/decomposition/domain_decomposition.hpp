@@ -80,16 +80,10 @@ class DomainDecomposition {
   // the caller sizes it for the ones received.
   template <class T>
   void drop_sent(std::size_t k, std::vector<T>& values) const {
-    std::size_t n = 0, next = 0;
-    const auto& leaving = leaving_[k];
-    for (std::size_t p = 0; p < values.size(); ++p) {
-      if (next < leaving.size() && leaving[next].p == p) {
-        ++next;
-        continue;
-      }
-      if (n != p) values[n] = values[p];
-      ++n;
-    }
+    std::size_t n = 0;
+    auto stays = staying(k);
+    for (std::size_t p = 0; p < values.size(); ++p)
+      if (stays(p)) values[n++] = values[p];
     values.resize(n);
   }
   // COLLECTIVE. Partitions when forced (the first distribution) or when the measurement due at
@@ -116,6 +110,14 @@ class DomainDecomposition {
     int to;         // its new owner
   };
   std::array<std::vector<Leaving>, 2> leaving_;  // migrate()'s lists (water, soil), kept for their capacity
+  // keep(p) for a compaction in particle order: false for the particles on species k's leaving
+  // list (called once per index, ascending).
+  auto staying(std::size_t k) const {
+    return [&leaving = leaving_[k], next = std::size_t{0}](std::size_t p) mutable {
+      if (next < leaving.size() && leaving[next].p == p) return ++next, false;
+      return true;
+    };
+  }
 };
 
 extern template class DomainDecomposition<2>;
