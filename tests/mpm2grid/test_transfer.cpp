@@ -191,6 +191,18 @@ TYPED_TEST(Transfer, AffineVelocityFieldIsTransferredExactly) {
     EXPECT_LT((P.C[p] - A).norm(), 1e-9);
     EXPECT_LT((grad_v[p] - A).norm(), 1e-9);
   }
+  // The divergence alone (the water's J update) is the full gradient's trace, bit for bit, with
+  // the same v_p and C_p.
+  const auto v = P.v;
+  const auto C = P.C;
+  std::vector<double> divergence(P.size());
+  grid_to_particles_each<VelocityGradient::divergence>(P, grid, nodes, nullptr, nullptr,
+                                                       [&](std::size_t p, double d) { divergence[p] = d; });
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    ASSERT_EQ(divergence[p], grad_v[p].trace());
+    ASSERT_EQ(P.v[p], v[p]);
+    ASSERT_EQ(P.C[p], C[p]);
+  }
 }
 
 // The tiled transfers (grid/node_tile.hpp, transfer/stencil_rows.hpp) against the sums of the

@@ -50,14 +50,6 @@ class BlockGrid {
     touch(s.base, corners);
   }
 
-  // True when the stencils with these bases (Stencil::base) lie in the same blocks, so that they
-  // have the same corners.
-  static bool same_blocks(const Index<Dim>& a, const Index<Dim>& b) {
-    for (int d = 0; d < Dim; ++d)
-      if (floor_div(a[d]) != floor_div(b[d]) || floor_div(a[d] + 3) != floor_div(b[d] + 3)) return false;
-    return true;
-  }
-
   // Activates one block (if it is not active yet) and returns its index.
   int activate(const Index<Dim>& b) {
     const auto [it, fresh] = lookup_.try_emplace(pack(b), static_cast<int>(coords_.size()));

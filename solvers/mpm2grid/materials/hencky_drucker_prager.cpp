@@ -96,8 +96,9 @@ StrainReturn<Dim> HenckyDruckerPrager::return_strain(const Vector<Dim>& eps_tria
   const double K = bulk_modulus<Dim>();
   const double M = friction_slope<Dim>();
   const double q_c = cohesion_intercept<Dim>(saturation);
-  const StressInvariants trial = invariants<Dim>(eps_trial);
-  const double q_yield = M * trial.p + q_c;  // the cone's q at the trial pressure, Pa
+  const double tr = eps_trial.sum();
+  const double p_trial = -K * tr;            // as invariants() gives it
+  const double q_yield = M * p_trial + q_c;  // the cone's q at the trial pressure, Pa
 
   // Apex: the trial pressure lies beyond the cone's tip (tension larger than the cohesion
   // allows). Dev eps = 0 and p = -q_c / M, i.e. tr eps = q_c / (M K).
@@ -105,13 +106,16 @@ StrainReturn<Dim> HenckyDruckerPrager::return_strain(const Vector<Dim>& eps_tria
     const double tr_apex = q_c / (M * K);
     return {Vector<Dim>::Constant(tr_apex / Dim), ReturnCase::apex};
   }
-  if (trial.q <= q_yield) return {eps_trial, ReturnCase::elastic};
+  // Elastic where q_tr <= q_yield (here q_yield >= 0): tested as q_tr^2 = 6 mu^2 |dev eps|^2 <=
+  // q_yield^2, without the square root that most particles (elastic) would wait for.
+  const double mean = tr / Dim;
+  const Vector<Dim> dev = eps_trial - mean * Vector<Dim>::Ones();
+  if (6 * mu * mu * dev.squaredNorm() <= q_yield * q_yield) return {eps_trial, ReturnCase::elastic};
 
   // Cone: q_tr > q_yield >= 0, so q_tr > 0. Scale the deviator so that q = q_yield; the trace,
   // hence p and the volume, stays (zero dilatancy).
-  const double mean = eps_trial.sum() / Dim;
-  const Vector<Dim> dev = eps_trial - mean * Vector<Dim>::Ones();
-  return {(mean * Vector<Dim>::Ones() + (q_yield / trial.q) * dev).eval(), ReturnCase::cone};
+  const double q_trial = 2 * mu * std::sqrt(1.5) * dev.norm();  // as invariants() gives it
+  return {(mean * Vector<Dim>::Ones() + (q_yield / q_trial) * dev).eval(), ReturnCase::cone};
 }
 
 template <int Dim>

@@ -68,17 +68,20 @@ StretchSpectrum<Dim> stretch_spectrum(const Matrix<Dim>& F) {
     }
     middle = 3 * m - top - bottom;
   }
-  // The smallest from det b = det(F)^2.
+  // The smallest from det b = det(F)^2. (log(top) is taken once: the compiler does not merge
+  // two calls of log, which may set errno.)
   const double rest = Dim == 2 ? top : top * middle;
+  const double log_top = std::log(top);
   s.lambda[0] = top;
-  s.log_sigma[0] = 0.5 * std::log(top);
+  s.log_sigma[0] = 0.5 * log_top;
   if constexpr (Dim == 3) {
     s.lambda[1] = middle;
     s.log_sigma[1] = 0.5 * std::log(middle);
     s.accurate = middle > 1e-2 * top;
   }
   s.lambda[Dim - 1] = det * det / rest;
-  s.log_sigma[Dim - 1] = det > 0 ? std::log(det) - 0.5 * std::log(rest) : std::numeric_limits<double>::quiet_NaN();
+  const double log_rest = Dim == 2 ? log_top : std::log(rest);
+  s.log_sigma[Dim - 1] = det > 0 ? std::log(det) - 0.5 * log_rest : std::numeric_limits<double>::quiet_NaN();
   return s;
 }
 

@@ -170,6 +170,7 @@ class Simulation {
 
  private:
   void build_grid();
+  void touch(const Particles<Dim>& P, std::vector<int>& groups);
   void stresses();
   void particles_to_grids(double dt);
   void spread(const Particles<Dim>& P, const P2GSources<Dim>& in, NodeFields<Dim>& nodes);
@@ -185,7 +186,8 @@ class Simulation {
   Particles<Dim> water_, soil_;
   BlockGrid<Dim> grid_;
   NodeFields<Dim> water_nodes_, soil_nodes_;
-  std::vector<Mat<Dim>> soil_tau_, grad_v_;
+  std::vector<Mat<Dim>> soil_tau_, grad_v_;  // the soil's Kirchhoff stresses and velocity gradients
+  std::vector<double> divergence_;           // the water's div v
   std::vector<double> soil_drag_, solid_volume_, water_pressure_;
   std::vector<double> solid_fraction_;  // mixture: phi_s per node slot
   // Per soil particle, a Kirchhoff stress the return mapping had at hand and the F_E it belongs

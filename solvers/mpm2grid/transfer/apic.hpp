@@ -12,8 +12,10 @@
 // Both go through a NodeTile per particle group (grid/node_tile.hpp) with the row kernels of
 // transfer/stencil_rows.hpp; they give the same sums for particles in any order, and work
 // fastest in group order (transfer/particle_order.hpp).
+#include <array>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "solvers/mpm2grid/grid/block_grid.hpp"
@@ -27,17 +29,39 @@ namespace suite::mpm2grid {
 // particle's group (grid/node_tile.hpp) as the index of its block (one entry per particle).
 template <int Dim>
 void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, std::vector<int>* groups = nullptr) {
+  using Grid = BlockGrid<Dim>;
   const double h = grid.spacing();
   if (groups) groups->resize(particles.size());
-  typename BlockGrid<Dim>::Corners corners{};
+  // The indices of the blocks g + {0, 1}^Dim around the current group g (offset bit d: the next
+  // block along axis d; -1: not activated by this sweep yet). The particles come mostly in group
+  // order, so a block's hash lookup happens about once per group, not once per particle; blocks
+  // are activated in the same order as touching each particle's stencil would.
+  std::array<int, Grid::kStencilBlocks> around{};
+  typename Grid::Key group = 0;
   Index<Dim> previous{};
+  int first = -1;  // the index of the current particle's group block
   for (std::size_t p = 0; p < particles.size(); ++p) {
     const Index<Dim> base = stencil_base(particles.x[p], h);
-    // Neighbouring particles mostly lie in the same blocks as the one before them: then those
-    // blocks are active and their indices known, without looking them up.
-    if (p == 0 || (base != previous && !BlockGrid<Dim>::same_blocks(base, previous))) grid.touch(base, corners);
-    previous = base;
-    if (groups) (*groups)[p] = corners[0];  // corner 0: the block of the stencil's first node
+    int moved = p == 0;  // compared per component (not as arrays: a store-forwarding stall)
+    for (int d = 0; d < Dim; ++d) moved |= base[d] ^ previous[d];
+    if (moved) {
+      const Index<Dim> g = Grid::block_holding(base);
+      if (p == 0 || Grid::key(g) != group) {
+        group = Grid::key(g);
+        around.fill(-1);
+      }
+      for (int corner = 0; corner < Grid::kStencilBlocks; ++corner) {  // as BlockGrid::touch()
+        Index<Dim> node = base;
+        for (int d = 0; d < Dim; ++d) node[d] += ((corner >> d) & 1) * 3;
+        const Index<Dim> b = Grid::block_holding(node);
+        int offset = 0;
+        for (int d = 0; d < Dim; ++d) offset |= (b[d] - g[d]) << d;
+        if (around[static_cast<std::size_t>(offset)] < 0) around[static_cast<std::size_t>(offset)] = grid.activate(b);
+      }
+      first = around[0];
+      previous = base;
+    }
+    if (groups) (*groups)[p] = first;
   }
 }
 
@@ -89,12 +113,9 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
     if constexpr (Form == StressForm::full) S = P.volume0[p] * (*in.tau)[p];
     if constexpr (Form == StressForm::isotropic) S(0, 0) = -P.volume0[p] * P.J[p] * (*in.pressure)[p];
     Vec<Dim> g = Vec<Dim>::Zero();
-    if (in.node_pressure) g = -(*in.solid_volume)[p] * sample_field<false, true>(*tile, kRead, s, first).gradient;
-    scatter_apic<Form, Fold>(*tile, s, first, P.mass[p], P.v[p], P.C[p], S, g, in.fold_dt);
-    if (extra) {
-      const double e = in.drag ? (*in.drag)[p] : P.mass[p] * (*in.pressure)[p];
-      scatter_weighted(*tile, kExtra, &e, 1, s, first);
-    }
+    if (in.node_pressure) g = -(*in.solid_volume)[p] * sample_field<false, kAllAxes>(*tile, kRead, s, first).gradient;
+    const double e = !extra ? 0.0 : in.drag ? (*in.drag)[p] : P.mass[p] * (*in.pressure)[p];
+    scatter_apic<Form, Fold>(*tile, s, first, P.mass[p], P.v[p], P.C[p], S, g, in.fold_dt, extra ? kExtra : -1, e);
   });
 }
 
@@ -127,18 +148,24 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
     detail::particles_to_grid<false>(P, in, grid, nodes);
 }
 
-// Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized), and,
-// with `field`, sum_i w_ip field_i per particle into `at_particles` (resized) in the same sweep
-// (the soil's saturation from the water's node masses).
-template <int Dim>
-void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
-                       std::vector<Mat<Dim>>& grad_v, const std::vector<double>* field = nullptr,
-                       std::vector<double>* at_particles = nullptr) {
+// What G2P samples of the velocity's gradient besides v_p and C_p.
+enum class VelocityGradient {
+  full,        // grad v_p
+  divergence,  // div v_p alone: one gradient component per velocity component (3 of 9 in 3D)
+  none,
+};
+
+// G2P over the particles in order: v_p and C_p, with `field` sum_i w_ip field_i into
+// `at_particles` (resized; the soil's saturation from the water's node masses), then
+// each(p, grad v_p) (full), each(p, div v_p) (divergence) or each(p) (none) for the caller to
+// keep what it needs.
+template <VelocityGradient Gradient, int Dim, class Each>
+void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
+                            const std::vector<double>* field, std::vector<double>* at_particles, Each&& each) {
   if (!field != !at_particles) throw std::invalid_argument("grid_to_particles: a field to sample needs its output");
   using Tile = NodeTile<Dim, Dim + 1>;  // velocity, the sampled field
   auto tile = std::make_unique<Tile>();
   const double inverse_d = apic_inverse_d(grid.spacing());
-  grad_v.resize(P.size());
   if (at_particles) at_particles->resize(P.size());
   const auto enter = [&] {
     tile->zero();
@@ -151,14 +178,41 @@ void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const Node
   sweep_groups(
       P.x, grid, *tile, enter, [] {},
       [&](std::size_t p, const StencilRows<Dim>& s, int first) {
+        constexpr auto axes = [](int a) {
+          return Gradient == VelocityGradient::full         ? kAllAxes
+                 : Gradient == VelocityGradient::divergence ? only_axis(a)
+                                                            : kNoAxes;
+        };
+        const auto velocity = [&]<int... a>(std::integer_sequence<int, a...>) {
+          return sample_fields<true, axes(a)...>(*tile, 0, s, first);
+        }
+        (std::make_integer_sequence<int, Dim>{});
+        Mat<Dim> grad_v;  // with the divergence only its diagonal (the rest 0)
         for (int a = 0; a < Dim; ++a) {
-          const FieldSample<Dim> va = sample_field<true, true>(*tile, a, s, first);
+          const FieldSample<Dim>& va = velocity[static_cast<std::size_t>(a)];
           P.v[p][a] = va.value;
           P.C[p].row(a) = inverse_d * va.moment.transpose();
-          grad_v[p].row(a) = va.gradient.transpose();
+          grad_v.row(a) = va.gradient.transpose();
         }
-        if (field) (*at_particles)[p] = sample_field<false, false>(*tile, Dim, s, first).value;
+        if (field) (*at_particles)[p] = sample_field<false, kNoAxes>(*tile, Dim, s, first).value;
+        if constexpr (Gradient == VelocityGradient::full)
+          each(p, grad_v);
+        else if constexpr (Gradient == VelocityGradient::divergence)
+          each(p, grad_v.trace());  // summed as the full gradient's trace
+        else
+          each(p);
       });
+}
+
+// Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized), and,
+// with `field`, sum_i w_ip field_i per particle into `at_particles` (resized) in the same sweep.
+template <int Dim>
+void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
+                       std::vector<Mat<Dim>>& grad_v, const std::vector<double>* field = nullptr,
+                       std::vector<double>* at_particles = nullptr) {
+  grad_v.resize(P.size());
+  grid_to_particles_each<VelocityGradient::full>(P, grid, nodes, field, at_particles,
+                                                 [&](std::size_t p, const Mat<Dim>& g) { grad_v[p] = g; });
 }
 
 }  // namespace suite::mpm2grid
