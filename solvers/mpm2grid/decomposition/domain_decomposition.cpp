@@ -124,10 +124,18 @@ void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& so
     }
 
   // One message per destination: the number of water particles, then the water's and the
-  // soil's packed states.
+  // soil's packed states (each message's size reserved: growing it would hold up to three times
+  // its particles at once).
   const auto ranks = static_cast<std::size_t>(comm_.size());
+  constexpr auto kPacked = static_cast<std::size_t>(Particles<Dim>::kPacked);
+  std::vector<std::size_t> sizes(ranks, 1);
+  for (const auto& leaving : leaving_)
+    for (const auto& l : leaving) sizes[static_cast<std::size_t>(l.to)] += kPacked;
   std::vector<std::vector<double>> send(ranks);
-  for (std::size_t r = 0; r < ranks; ++r) send[r].push_back(0.0);
+  for (std::size_t r = 0; r < ranks; ++r) {
+    send[r].reserve(sizes[r]);
+    send[r].push_back(0.0);
+  }
   for (std::size_t k = 0; k < 2; ++k) {
     for (const auto& l : leaving_[k]) {
       auto& to = send[static_cast<std::size_t>(l.to)];
@@ -141,11 +149,19 @@ void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& so
   for (std::size_t r = 0; r < ranks; ++r)
     if (static_cast<int>(r) != me) stats_.migration_bytes += static_cast<long long>(send[r].size() * sizeof(double));
   const auto received = all_to_all(comm_, send);
-  constexpr auto kPacked = static_cast<std::size_t>(Particles<Dim>::kPacked);
+  send = {};  // the particles that left, sent: freed before the arrivals are added
+  std::array<std::size_t, 2> arriving{water.size(), soil.size()};
   for (const auto& from : received) {
     const std::size_t water_count = from.empty() ? 0 : static_cast<std::size_t>(from[0]);
     if (from.empty() || (from.size() - 1) % kPacked != 0 || water_count > (from.size() - 1) / kPacked)
       throw LibraryError("particle migration: a rank sent a partial particle");
+    arriving[0] += water_count;
+    arriving[1] += (from.size() - 1) / kPacked - water_count;
+  }
+  water.reserve(arriving[0]);
+  soil.reserve(arriving[1]);
+  for (const auto& from : received) {
+    const std::size_t water_count = static_cast<std::size_t>(from[0]);
     for (std::size_t k = 1, n = 0; k < from.size(); k += kPacked, ++n)
       (n < water_count ? water : soil).add_packed(from.data() + k);
   }

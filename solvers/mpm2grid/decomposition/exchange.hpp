@@ -1,7 +1,7 @@
 #pragma once
 // Point-to-point traffic between the ranks of a decomposition, as two collectives over plain
 // arrays of trivially copyable values: all_to_all() (each rank sends its own list to every other
-// rank: counts by MPI_Alltoall, data by MPI_Alltoallv) and all_gather() (every rank's list on
+// rank: counts by MPI_Alltoall, data point to point) and all_gather() (every rank's list on
 // every rank: MPI_Allgatherv). Both return what arrived by source rank, so callers process it in
 // rank order and the result does not depend on message timing. Lists of one rank may be empty.
 #include <mpi.h>
@@ -9,8 +9,8 @@
 #include <climits>
 #include <cstddef>
 #include <cstring>
-#include <string>
 #include <numeric>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -47,11 +47,16 @@ std::vector<std::vector<T>> split(const std::vector<char>& bytes, const std::vec
 }  // namespace detail
 
 // Sends send[r] to rank r (send has comm.size() lists) and returns, by source rank, what the
-// others sent to this one (its own list to itself included). COLLECTIVE.
+// others sent to this one (its own list to itself included). COLLECTIVE. The counts go by
+// MPI_Alltoall, the lists point to point straight from `send` into the returned lists: no
+// contiguous copy on either side (a rank handing out half of all particles, as at the first
+// distribution, would hold its share three times over).
 template <class T>
 std::vector<std::vector<T>> all_to_all(const mpi::Comm& comm, const std::vector<std::vector<T>>& send) {
   static_assert(std::is_trivially_copyable_v<T>);
+  constexpr int kTag = 7302;  // not the halo exchange's
   const auto ranks = static_cast<std::size_t>(comm.size());
+  const auto me = static_cast<std::size_t>(comm.rank());
   if (send.size() != ranks) throw LibraryError("all_to_all: one list per rank expected");
   std::vector<int> send_counts(ranks), recv_counts(ranks);
   for (std::size_t r = 0; r < ranks; ++r) {
@@ -60,16 +65,26 @@ std::vector<std::vector<T>> all_to_all(const mpi::Comm& comm, const std::vector<
     send_counts[r] = static_cast<int>(bytes);
   }
   SUITE_MPI_CHECK(MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm.raw()));
-  const auto send_displs = detail::displacements(send_counts, "all_to_all");
-  const auto recv_displs = detail::displacements(recv_counts, "all_to_all");
-  std::vector<char> out(static_cast<std::size_t>(send_displs.back() + send_counts.back()));
-  for (std::size_t r = 0; r < ranks; ++r)
-    if (!send[r].empty())
-      std::memcpy(out.data() + send_displs[r], send[r].data(), static_cast<std::size_t>(send_counts[r]));
-  std::vector<char> in(static_cast<std::size_t>(recv_displs.back() + recv_counts.back()));
-  SUITE_MPI_CHECK(MPI_Alltoallv(out.data(), send_counts.data(), send_displs.data(), MPI_BYTE, in.data(),
-                                recv_counts.data(), recv_displs.data(), MPI_BYTE, comm.raw()));
-  return detail::split<T>(in, recv_counts, recv_displs);
+  std::vector<std::vector<T>> in(ranks);
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * ranks);
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (r == me || recv_counts[r] == 0) continue;
+    if (recv_counts[r] % static_cast<int>(sizeof(T)) != 0) throw LibraryError("all_to_all: a partial value arrived");
+    in[r].resize(static_cast<std::size_t>(recv_counts[r]) / sizeof(T));
+    requests.emplace_back();
+    SUITE_MPI_CHECK(
+        MPI_Irecv(in[r].data(), recv_counts[r], MPI_BYTE, static_cast<int>(r), kTag, comm.raw(), &requests.back()));
+  }
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (r == me || send_counts[r] == 0) continue;
+    requests.emplace_back();
+    SUITE_MPI_CHECK(
+        MPI_Isend(send[r].data(), send_counts[r], MPI_BYTE, static_cast<int>(r), kTag, comm.raw(), &requests.back()));
+  }
+  in[me] = send[me];
+  SUITE_MPI_CHECK(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE));
+  return in;
 }
 
 // Every rank's list, on every rank, by rank. COLLECTIVE.
@@ -83,8 +98,8 @@ std::vector<std::vector<T>> all_gather(const mpi::Comm& comm, const std::vector<
   SUITE_MPI_CHECK(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm.raw()));
   const auto displs = detail::displacements(counts, "all_gather");
   std::vector<char> in(static_cast<std::size_t>(displs.back() + counts.back()));
-  SUITE_MPI_CHECK(MPI_Allgatherv(mine.data(), count, MPI_BYTE, in.data(), counts.data(), displs.data(), MPI_BYTE,
-                                 comm.raw()));
+  SUITE_MPI_CHECK(
+      MPI_Allgatherv(mine.data(), count, MPI_BYTE, in.data(), counts.data(), displs.data(), MPI_BYTE, comm.raw()));
   return detail::split<T>(in, counts, displs);
 }
 

@@ -30,6 +30,12 @@ struct Particles {
 
   std::size_t size() const { return x.size(); }
 
+  // Room for n particles in every array: adding up to n reallocates none.
+  void reserve(std::size_t n) {
+    x.reserve(n), v.reserve(n), C.reserve(n), mass.reserve(n), volume0.reserve(n), F.reserve(n);
+    J.reserve(n), log_jp.reserve(n), saturation.reserve(n), load.reserve(n), id.reserve(n);
+  }
+
   void add(const Vec<Dim>& position, const Vec<Dim>& velocity, double m, double volume) {
     x.push_back(position);
     v.push_back(velocity);
