@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "solvers/mpm2grid/materials/drucker_prager_return.hpp"
 #include "solvers/mpm2grid/materials/hencky_drucker_prager.hpp"
 #include "solvers/mpm2grid/materials/log_stretch.hpp"
 #include "solvers/mpm2grid/materials/polar_svd.hpp"

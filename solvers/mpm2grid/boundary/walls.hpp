@@ -22,6 +22,14 @@ struct Walls {
   std::array<std::array<WallKind, 2>, Dim> kind{};  // [axis][0: low side, 1: high side]
   double friction = 0;                              // Coulomb coefficient for friction walls
 
+  // True when some side is open (particles can leave the model).
+  bool any_open() const {
+    for (const auto& sides : kind)
+      for (const WallKind k : sides)
+        if (k == WallKind::open) return true;
+    return false;
+  }
+
   // True when x has left the box through an open side.
   bool left_through_open_side(const Vec<Dim>& x) const {
     for (int d = 0; d < Dim; ++d) {

@@ -67,6 +67,7 @@
 // correction (volume_correction = false, log_jp passed through unchanged) every apex projection
 // leaves its volume in F_P for good: pulled-apart then re-compressed sand ends up larger at the
 // same stress.
+#include <algorithm>
 #include <cmath>
 
 #include "solvers/mpm2grid/materials/polar_svd.hpp"
@@ -150,7 +151,7 @@ struct HenckyDruckerPrager {
     return Dim == 2 ? std::sqrt(3.0) * s : 6 * s / (3 - s);
   }
   // c(S) = c0 (1 - clamp(S, 0, 1)), Pa.
-  double cohesion_at(double saturation) const;
+  double cohesion_at(double saturation) const { return cohesion * (1 - std::clamp(saturation, 0.0, 1.0)); }
   // q_c(S): 6 c(S) cos(phi_f) / (3 - sin(phi_f)) in 3D, sqrt(3) c(S) cos(phi_f) in 2D; Pa.
   template <int Dim>
   double cohesion_intercept(double saturation) const {
@@ -211,7 +212,8 @@ inline double cohesion_of_strain_shift(double c_C, double bulk_modulus, double f
   return bulk_modulus * std::tan(friction_angle) * c_C / alpha;
 }
 
-// The member templates above are defined, and instantiated for Dim = 2 and 3, in
-// hencky_drucker_prager.cpp (link it; callers never instantiate them).
+// kirchhoff(), first_piola(), energy_density() and invariants() are defined, and instantiated
+// for Dim = 2 and 3, in hencky_drucker_prager.cpp (link it); return_strain() and project() in
+// materials/drucker_prager_return.hpp (include it to call them).
 
 }  // namespace suite::mpm2grid

@@ -11,6 +11,7 @@
 
 #include "solvers/mpm2grid/grid/node_tile.hpp"
 #include "solvers/mpm2grid/kernels/vector_clones.hpp"
+#include "solvers/mpm2grid/materials/drucker_prager_return.hpp"
 #include "solvers/mpm2grid/transfer/apic.hpp"
 #include "solvers/mpm2grid/transfer/particle_order.hpp"
 #include "solvers/mpm2grid/transfer/stencil_rows.hpp"
@@ -250,23 +251,38 @@ void Simulation<Dim>::distribute() {
   if (dd_) dd_->balance(steps_, water_, soil_, true);
 }
 
-// G2P and the particle updates. (Updating each particle inside the G2P sweep, its gradient never
-// stored, measured 10% slower in 2D: the return mapping's call in the sweep's loop.)
+// G2P of the water: v_p and C_p, and div v_p for the J update (not with the mixture, whose J
+// update samples the grid itself).
 template <int Dim>
-SUITE_VECTOR_CLONES void Simulation<Dim>::update_particles(double dt) {
+SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
+  if (s_.mixture) {
+    grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, [](std::size_t) {});
+    return;
+  }
+  divergence_.resize(water_.size());
+  grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr,
+                                                       [&](std::size_t p, double div) { divergence_[p] = div; });
+}
+
+// G2P of the soil: v_p, C_p, grad v_p, and the water grid's masses at the particles. The
+// saturation (see the header) comes from these, sampled at the positions the velocities were
+// spread from: the return mapping's cohesion is the step's own.
+template <int Dim>
+SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
+  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_nodes_.mass, &soil_.saturation);
+}
+
+// The particle updates after G2P, compiled for the baseline only with the return mapping inlined
+// (kernels/vector_clones.hpp, SUITE_INLINE_CALLS): 5% of the 2D step. (Updating each particle
+// inside the G2P sweep instead, its gradient never stored, measured 10% slower in 2D.)
+template <int Dim>
+SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   const Mat<Dim> I = Mat<Dim>::Identity();
   // Over several ranks, which particles the move takes to another home block.
   const auto home = [h = s_.h](const Vec<Dim>& x) { return BlockGrid<Dim>::home_block(x, h); };
   for (std::size_t k = 0; k < 2; ++k) left_home_[k].assign(dd_ ? (k == 0 ? water_ : soil_).size() : 0, 0);
-  if (s_.mixture) {
-    // The mixture's J update samples the grid at the positions the water was spread from.
-    grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, [](std::size_t) {});
-    mixture_volume_rates(dt);
-  } else {
-    divergence_.resize(water_.size());
-    grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr,
-                                                         [&](std::size_t p, double div) { divergence_[p] = div; });
-  }
+  water_velocities();
+  if (s_.mixture) mixture_volume_rates(dt);  // at the positions the water was spread from
   for (std::size_t p = 0; p < water_.size(); ++p) {
     const Index<Dim> from = dd_ ? home(water_.x[p]) : Index<Dim>{};
     water_.x[p] += dt * water_.v[p];
@@ -274,10 +290,7 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::update_particles(double dt) {
     s_.walls.clamp(water_.x[p]);
     if (dd_) left_home_[0][p] = home(water_.x[p]) != from;
   }
-  // The soil's saturation (see the header) from the water grid's masses, sampled with the
-  // velocities at the positions they were spread from: the return mapping's cohesion is the
-  // step's own. The sweep leaves the mass sums sum_i w_ip m_w,i in `saturation`.
-  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_nodes_.mass, &soil_.saturation);
+  soil_velocities();  // leaves the mass sums sum_i w_ip m_w,i in `saturation`
   const double full = s_.water.density * std::pow(s_.h, Dim) * s_.soil.porosity;  // kg in a node's pores
   known_stress_.resize(soil_.size());
   for (std::size_t p = 0; p < soil_.size(); ++p) {
@@ -297,7 +310,8 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::update_particles(double dt) {
 
 template <int Dim>
 void Simulation<Dim>::remove_outflow() {
-  Outflow<Dim> step;  // this step's, on this rank
+  if (!s_.walls.any_open()) return;  // a closed box (the same on every rank): nothing leaves
+  Outflow<Dim> step;                 // this step's, on this rank
   auto keep = [&](const Particles<Dim>& species, double& species_mass) {
     return [this, &step, P = &species, mass = &species_mass](std::size_t p) {
       if (!s_.walls.left_through_open_side(P->x[p])) return true;

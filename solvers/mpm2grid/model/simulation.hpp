@@ -181,6 +181,8 @@ class Simulation {
   void add_loads();
   void solid_fractions();
   void mixture_volume_rates(double dt);
+  void water_velocities();
+  void soil_velocities();
 
   SimulationSettings<Dim> s_;
   Particles<Dim> water_, soil_;
