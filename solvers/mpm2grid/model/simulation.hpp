@@ -183,6 +183,8 @@ class Simulation {
   void mixture_volume_rates(double dt);
   void water_velocities();
   void soil_velocities();
+  void record_homes(const Particles<Dim>& P);
+  void mark_moved(const Particles<Dim>& P, std::vector<char>& left) const;
 
   SimulationSettings<Dim> s_;
   Particles<Dim> water_, soil_;
@@ -202,6 +204,7 @@ class Simulation {
   // Over several ranks, per water and soil particle: 1 where the step's move took it to another
   // home block (only these can have left this rank's blocks; migrate() looks up just them).
   std::array<std::vector<char>, 2> left_home_;
+  std::vector<typename BlockGrid<Dim>::Key> home_before_;  // one species' home blocks before the move
   std::optional<mpi::Comm> comm_;
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;
   SolveStats drag_stats_{};
