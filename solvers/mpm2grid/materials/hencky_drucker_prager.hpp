@@ -212,8 +212,9 @@ inline double cohesion_of_strain_shift(double c_C, double bulk_modulus, double f
   return bulk_modulus * std::tan(friction_angle) * c_C / alpha;
 }
 
-// kirchhoff(), first_piola(), energy_density() and invariants() are defined, and instantiated
-// for Dim = 2 and 3, in hencky_drucker_prager.cpp (link it); return_strain() and project() in
-// materials/drucker_prager_return.hpp (include it to call them).
+// kirchhoff(F_E), first_piola(), energy_density() and invariants() are defined, and
+// instantiated for Dim = 2 and 3, in hencky_drucker_prager.cpp (link it); return_strain(),
+// project() and the private stress helpers in materials/drucker_prager_return.hpp (include it to
+// call them).
 
 }  // namespace suite::mpm2grid
