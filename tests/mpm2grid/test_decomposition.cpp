@@ -96,7 +96,7 @@ TEST(Particles, IdsFollowTheirParticles) {
   for (int i = 0; i < 6; ++i) P.add(Vec<2>(i, 0), Vec<2>(0, i), 1.0 + i, 1.0);
   EXPECT_EQ(P.id, (std::vector<std::int64_t>{0, 1, 2, 3, 4, 5}));
   const std::vector<std::size_t> order{5, 3, 1, 0, 2, 4};
-  P.reorder([&](auto& values) { apply_order(values, order); });
+  P.for_each_array([&](auto& values) { apply_order(values, order); });
   P.retain([&](std::size_t p) { return P.id[p] != 3; });
   ASSERT_EQ(P.size(), 5u);
   for (std::size_t p = 0; p < P.size(); ++p) {

@@ -62,10 +62,10 @@ void Simulation<Dim>::build_grid() {
   std::vector<int> groups;
   touch(water_, groups);
   if (const auto order = group_order(groups, grid_.blocks()); !order.empty())
-    water_.reorder([&](auto& values) { apply_order(values, order); });
+    water_.for_each_array([&](auto& values) { apply_order(values, order); });
   touch(soil_, groups);
   if (const auto order = group_order(groups, grid_.blocks()); !order.empty()) {
-    soil_.reorder([&](auto& values) { apply_order(values, order); });
+    soil_.for_each_array([&](auto& values) { apply_order(values, order); });
     if (known_stress_.size() == soil_.size()) apply_order(known_stress_, order);
   }
   if (dd_) dd_->prepare(grid_);  // adds the halo blocks after these

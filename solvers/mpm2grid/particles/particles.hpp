@@ -30,10 +30,16 @@ struct Particles {
 
   std::size_t size() const { return x.size(); }
 
+  // Calls f(values) on each per-particle array (to reorder the particles, f applies one
+  // permutation to each).
+  template <class Visit>
+  void for_each_array(Visit&& f) {
+    f(x), f(v), f(C), f(mass), f(volume0), f(F), f(J), f(log_jp), f(saturation), f(load), f(id);
+  }
+
   // Room for n particles in every array: adding up to n reallocates none.
   void reserve(std::size_t n) {
-    x.reserve(n), v.reserve(n), C.reserve(n), mass.reserve(n), volume0.reserve(n), F.reserve(n);
-    J.reserve(n), log_jp.reserve(n), saturation.reserve(n), load.reserve(n), id.reserve(n);
+    for_each_array([n](auto& values) { values.reserve(n); });
   }
 
   void add(const Vec<Dim>& position, const Vec<Dim>& velocity, double m, double volume) {
@@ -58,24 +64,13 @@ struct Particles {
     for (std::size_t p = 0; p < size(); ++p) {
       if (!keep(p)) continue;
       if (n != p) {
-        x[n] = x[p], v[n] = v[p], C[n] = C[p], mass[n] = mass[p], volume0[n] = volume0[p];
-        F[n] = F[p], J[n] = J[p], log_jp[n] = log_jp[p], saturation[n] = saturation[p], load[n] = load[p];
-        id[n] = id[p];
+        for_each_array([n, p](auto& values) { values[n] = values[p]; });
         ((along[n] = along[p]), ...);
       }
       ++n;
     }
-    x.resize(n), v.resize(n), C.resize(n), mass.resize(n), volume0.resize(n);
-    F.resize(n), J.resize(n), log_jp.resize(n), saturation.resize(n), load.resize(n), id.resize(n);
+    for_each_array([n](auto& values) { values.resize(n); });
     (along.resize(n), ...);
-  }
-
-  // Puts the particles in a new order: permute(values) is called on each per-particle array and
-  // must apply one permutation to all of them.
-  template <class Permute>
-  void reorder(Permute&& permute) {
-    permute(x), permute(v), permute(C), permute(mass), permute(volume0);
-    permute(F), permute(J), permute(log_jp), permute(saturation), permute(load), permute(id);
   }
 
   // A particle's whole state as kPacked doubles (for moving it to another rank), and back (the id
