@@ -11,4 +11,4 @@ for cells in 8 16 32; do
   "$bin" --out "$work/a_over_$cells" "grid.spacing=$h mm" --log-level warn
   runs+=("$work/a_over_$cells")
 done
-"$python" "$(dirname "$0")/check_martin_moyce.py" "$reference" 0.22 0.6 3.0 "${runs[@]}"
+"$python" "$(dirname "$0")/check_martin_moyce.py" "$reference" 0.22 0.10 0.6 3.0 "${runs[@]}"
