@@ -97,8 +97,9 @@ class MpmRun {
     } else {
       // a fresh start: checkpoints of an earlier run are stale
       checkpoint::discard_after(comm_, checkpoints_, "checkpoint", -1, log_);
-      // Rank 0 seeds the lattice; over several ranks METIS then spreads the blocks and particles.
-      if (comm_.is_root()) seed_particles(scene_, sim_);
+      // Each rank seeds a band of the lattice; over several ranks METIS then partitions the blocks
+      // and the particles go to their owners.
+      seed_particles(scene_, sim_, &comm_);
       sim_.distribute();
       p_.initial_soil_volume = soil_in_dam();
       p_.next_sample = scene_.time.series;

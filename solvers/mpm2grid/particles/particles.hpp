@@ -25,8 +25,8 @@ struct Particles {
                                    // particles of a region's upper surface; zero elsewhere)
   std::vector<std::int64_t> id;    // the particle's number, unique within its species over the
                                    // run and kept wherever it goes (ParaView tracks particles by it)
-  std::int64_t next_id = 0;        // the number add() gives next (the particles are seeded and
-                                   // emitted on one rank; the others receive theirs)
+  std::int64_t next_id = 0;        // the number add() gives next (seeding numbers the lattice
+                                   // as one rank would, over any ranks; rank 0 emits the inlet's)
 
   std::size_t size() const { return x.size(); }
 

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -229,16 +231,16 @@ std::vector<double> Scene<Dim>::fingerprint() const {
 }
 
 template <int Dim>
-void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim) {
+void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim, const mpi::Comm* comm) {
   const auto& s = sc.simulation;
   const int ppc = sc.particles_per_cell;
   const double spacing = s.h / ppc, volume = std::pow(spacing, Dim);
   Index<Dim> count;
-  long long total = 1;
-  for (int d = 0; d < Dim; ++d) {
-    count[d] = static_cast<int>(std::llround((s.walls.hi[d] - s.walls.lo[d]) / spacing));
-    total *= count[d];
-  }
+  for (int d = 0; d < Dim; ++d) count[d] = static_cast<int>(std::llround((s.walls.hi[d] - s.walls.lo[d]) / spacing));
+  // The lattice in layers across its last axis (y in 2D, z in 3D), the slowest in its numbering.
+  const long long layers = count[Dim - 1];
+  long long per_layer = 1;
+  for (int d = 0; d + 1 < Dim; ++d) per_layer *= count[d];
   auto inside = [](const std::vector<Region>& regions, const Vec<Dim>& x) {
     for (const auto& r : regions)
       if (r.template contains<Dim>(x)) return true;
@@ -249,6 +251,58 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim) {
       if (r.saturated && r.template contains<Dim>(x)) return true;
     return false;
   };
+  // f(x, soil, water) for the lattice points of layers [first, last) in numbering order (x
+  // fastest), with the particles each one gets: a soil particle, a water particle (a soil
+  // point's pore water where its region is saturated), both or none.
+  auto walk = [&](long long first, long long last, auto&& f) {
+    for (long long n = first * per_layer; n < last * per_layer; ++n) {
+      long long r = n;
+      Vec<Dim> x;
+      for (int d = 0; d < Dim; ++d) {
+        x[d] = s.walls.lo[d] + (static_cast<double>(r % count[d]) + 0.5) * spacing;
+        r /= count[d];
+      }
+      const bool soil = inside(sc.soil_regions, x);
+      const bool water = soil ? saturated(x) : inside(sc.water_regions, x);
+      if (soil || water) f(x, soil, water);
+    }
+  };
+
+  // Over several ranks each seeds a band of whole layers holding about its share of the
+  // particles, so that no rank holds the whole scene before the first partition. The bands follow
+  // the numbering, so the particles get the numbers (ids) one rank would give them.
+  long long first = 0, last = layers;
+  std::int64_t water_before = 0, soil_before = 0, water_total = -1, soil_total = -1;
+  if (comm && comm->size() > 1) {
+    const int parts = comm->size(), part = comm->rank();
+    std::vector<double> counts(2 * static_cast<std::size_t>(layers), 0.0);  // soil, water per layer
+    for (long long k = part * layers / parts; k < (part + 1) * layers / parts; ++k)
+      walk(k, k + 1, [&](const Vec<Dim>&, bool soil, bool water) {
+        counts[2 * static_cast<std::size_t>(k)] += soil;
+        counts[2 * static_cast<std::size_t>(k) + 1] += water;
+      });
+    comm->all_reduce(counts, mpi::Comm::Reduction::sum);
+    // Rank r's band starts at the first layer with at least r / parts of the particles below it.
+    std::vector<long long> below(static_cast<std::size_t>(layers) + 1, 0);
+    for (long long k = 0; k < layers; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      below[i + 1] = below[i] + std::llround(counts[2 * i] + counts[2 * i + 1]);
+    }
+    const auto band_start = [&](int r) {
+      return static_cast<long long>(
+          std::lower_bound(below.begin(), below.end() - 1, (below.back() * r + parts - 1) / parts) - below.begin());
+    };
+    first = band_start(part);
+    last = part + 1 == parts ? layers : band_start(part + 1);
+    soil_total = water_total = 0;
+    for (long long k = 0; k < layers; ++k) {
+      const auto soil = std::llround(counts[2 * static_cast<std::size_t>(k)]);
+      const auto water = std::llround(counts[2 * static_cast<std::size_t>(k) + 1]);
+      if (k < first) soil_before += soil, water_before += water;
+      soil_total += soil, water_total += water;
+    }
+  }
+
   // The surcharge on a soil particle: that of each region whose upper surface it is on.
   auto load = [&](const Vec<Dim>& x) {
     Vec<Dim> above = x, f = Vec<Dim>::Zero();
@@ -272,21 +326,19 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim) {
   };
   // Pore water: a whole water particle, or in the mixture the pores' part n.
   const double pores = s.mixture ? s.soil.porosity : 1.0;
-  for (long long n = 0; n < total; ++n) {
-    long long r = n;
-    Vec<Dim> x;
-    for (int d = 0; d < Dim; ++d) {
-      x[d] = s.walls.lo[d] + (static_cast<double>(r % count[d]) + 0.5) * spacing;
-      r /= count[d];
-    }
-    if (inside(sc.soil_regions, x)) {
+  const std::int64_t water_base = sim.water().next_id, soil_base = sim.soil().next_id;
+  sim.water().next_id = water_base + water_before;
+  sim.soil().next_id = soil_base + soil_before;
+  walk(first, last, [&](const Vec<Dim>& x, bool soil, bool water) {
+    if (soil) {
       sim.soil().add(x, Vec<Dim>::Zero(), s.soil.density * volume, volume);
       if (s.loads) sim.soil().load.back() = load(x);
-      if (saturated(x)) add_water(x, pores);
-    } else if (inside(sc.water_regions, x)) {
-      add_water(x, 1.0);
     }
-  }
+    if (water) add_water(x, soil ? pores : 1.0);
+  });
+  // Every rank numbers on after the whole scene's particles (rank 0's inlet goes on from there).
+  if (water_total >= 0) sim.water().next_id = water_base + water_total;
+  if (soil_total >= 0) sim.soil().next_id = soil_base + soil_total;
 }
 
 template bool Region::contains<2>(const Vec<2>&, double) const;
@@ -295,7 +347,7 @@ template struct Scene<2>;
 template struct Scene<3>;
 template Scene<2> read_scene<2>(const config::Config&);
 template Scene<3> read_scene<3>(const config::Config&);
-template void seed_particles<2>(const Scene<2>&, Simulation<2>&);
-template void seed_particles<3>(const Scene<3>&, Simulation<3>&);
+template void seed_particles<2>(const Scene<2>&, Simulation<2>&, const mpi::Comm*);
+template void seed_particles<3>(const Scene<3>&, Simulation<3>&, const mpi::Comm*);
 
 }  // namespace suite::mpm2grid

@@ -53,6 +53,7 @@
 
 #include "core/checkpoint/schedule.hpp"
 #include "core/config/config.hpp"
+#include "core/mpi/comm.hpp"
 #include "solvers/mpm2grid/model/simulation.hpp"
 
 namespace suite::mpm2grid {
@@ -105,8 +106,12 @@ Scene<Dim> read_scene(const config::Config& scene);
 
 // Particles on a regular lattice, particles_per_cell per axis in every cell, where the regions are;
 // water at the hydrostatic J under hydrostatic_surface if given (volume0 = lattice volume / J, so
-// that the particle fills its lattice cell at the hydrostatic pressure).
+// that the particle fills its lattice cell at the hydrostatic pressure). Particle ids follow the
+// lattice's numbering (x fastest), per species.
+// With a communicator of several ranks, each rank seeds a band of the lattice (whole layers
+// across its last axis) holding about its share of the particles, with the ids one rank would
+// give them; Simulation::distribute() then partitions. COLLECTIVE there.
 template <int Dim>
-void seed_particles(const Scene<Dim>& scene, Simulation<Dim>& simulation);
+void seed_particles(const Scene<Dim>& scene, Simulation<Dim>& simulation, const mpi::Comm* comm = nullptr);
 
 }  // namespace suite::mpm2grid
