@@ -196,7 +196,7 @@ TYPED_TEST(Transfer, AffineVelocityFieldIsTransferredExactly) {
   const auto v = P.v;
   const auto C = P.C;
   std::vector<double> divergence(P.size());
-  grid_to_particles_each<VelocityGradient::divergence>(P, grid, nodes, nullptr, nullptr,
+  grid_to_particles_each<VelocityGradient::divergence>(P, grid, nodes, nullptr, nullptr, nullptr,
                                                        [&](std::size_t p, double d) { divergence[p] = d; });
   for (std::size_t p = 0; p < P.size(); ++p) {
     ASSERT_EQ(divergence[p], grad_v[p].trace());

@@ -63,6 +63,12 @@ class NodeTile {
       blocks_[static_cast<std::size_t>(c)] = grid.find_block(b);
     }
   }
+  // The covered group's first node (the tile's index 0).
+  Index<Dim> first_node() const {
+    Index<Dim> n = Grid::unkey(key_);
+    for (int d = 0; d < Dim; ++d) n[d] *= Grid::kSide;
+    return n;
+  }
   // Forgets the group (the next covers() is false).
   void release() { covering_ = false; }
 

@@ -20,7 +20,10 @@ namespace suite::mpm2grid {
 
 template <int Dim>
 Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm)
-    : s_(settings), grid_(settings.h), comm_(std::move(comm)) {
+    : s_(settings),
+      grid_(settings.h),
+      fold_(settings.walls, settings.h, settings.inlet.has_value()),
+      comm_(std::move(comm)) {
   if (s_.inlet) inlet_.emplace(*s_.inlet);
   if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, s_.h);
   if (s_.drag != DragScheme::consistent) return;
@@ -117,9 +120,9 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::spread(const Particles<Dim>& P, const 
 template <int Dim>
 void Simulation<Dim>::particles_to_grids(double dt) {
   const double fold_dt = s_.drag == DragScheme::explicit_euler ? 0.0 : dt;
-  spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt}, water_nodes_);
+  spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt, .walls = &fold_}, water_nodes_);
   if (dd_) dd_->sum_to_owners(water_nodes_);
-  P2GSources<Dim> soil{.tau = &soil_tau_, .drag = &soil_drag_, .fold_dt = fold_dt};
+  P2GSources<Dim> soil{.tau = &soil_tau_, .drag = &soil_drag_, .fold_dt = fold_dt, .walls = &fold_};
   if (s_.buoyancy) {
     auto& p = water_nodes_.pressure;
     for (std::size_t i = 0; i < grid_.nodes(); ++i) p[i] = water_nodes_.mass[i] > 0 ? p[i] / water_nodes_.mass[i] : 0.0;
@@ -199,8 +202,14 @@ void Simulation<Dim>::add_loads() {
     const Stencil<Dim> st(soil_.x[q], s_.h);
     grid_.stencil_slots(st, slots);
     st.weights(weights);
-    for (int n = 0; n < BlockGrid<Dim>::kNodes; ++n)
-      soil_nodes_.force[static_cast<std::size_t>(slots[n])] += weights[n] * ramp * soil_.load[q];
+    for (int n = 0; n < BlockGrid<Dim>::kNodes; ++n) {
+      // A node beyond a wall passes its share to its mirror (boundary/wall_fold.hpp), which lies
+      // in the same stencil.
+      Index<Dim> node = grid_.node_of(slots[n]);
+      Vec<Dim> f = weights[n] * ramp * soil_.load[q];
+      fold_.redirect(node, f);
+      soil_nodes_.force[static_cast<std::size_t>(grid_.slot_of(node))] += f;
+    }
   }
 }
 
@@ -212,7 +221,7 @@ void Simulation<Dim>::solid_fractions() {
   solid_fraction_.assign(grid_.nodes(), 0.0);
   for (std::size_t i = 0; i < grid_.nodes(); ++i) {
     if (!(soil_nodes_.mass[i] > 0)) continue;
-    const double inside = s_.walls.inside_fraction(grid_.position(static_cast<long>(i)), s_.h);
+    const double inside = fold_.inside_fraction(s_.walls, grid_.position(static_cast<long>(i)), s_.h);
     if (inside > 0) solid_fraction_[i] = std::min(kMost, per_kg * soil_nodes_.mass[i] / inside);
   }
   if (dd_) dd_->copy_to_ghosts(solid_fraction_);
@@ -225,6 +234,11 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mixture_volume_rates(double dt) {
   // Tile fields: 0 phi_s, 1 .. Dim the volume flux phi_s v_s + (1 - phi_s) v_w.
   using Tile = NodeTile<Dim, 1 + Dim>;
   auto tile = std::make_unique<Tile>();
+  constexpr auto fields = [] {
+    std::array<TileField, 1 + Dim> f{};
+    for (int d = 0; d < Dim; ++d) f[static_cast<std::size_t>(1 + d)] = {TileField::component, d};
+    return f;
+  }();
   const auto enter = [&] {
     tile->zero();
     tile->for_each_node([&](int t, long slot) {
@@ -234,6 +248,7 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mixture_volume_rates(double dt) {
       const Vec<Dim> flux = f * soil_nodes_.velocity[i] + (1 - f) * water_nodes_.velocity[i];
       for (int d = 0; d < Dim; ++d) tile->field(1 + d)[t] = flux[d];
     });
+    fold_.mirror(*tile, fields);
   };
   sweep_groups(
       water_.x, grid_, *tile, enter, [] {},
@@ -256,11 +271,12 @@ void Simulation<Dim>::distribute() {
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
   if (s_.mixture) {
-    grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, [](std::size_t) {});
+    grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, &fold_,
+                                                   [](std::size_t) {});
     return;
   }
   divergence_.resize(water_.size());
-  grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr,
+  grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &fold_,
                                                        [&](std::size_t p, double div) { divergence_[p] = div; });
 }
 
@@ -269,7 +285,7 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
 // spread from: the return mapping's cohesion is the step's own.
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
-  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_nodes_.mass, &soil_.saturation);
+  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_nodes_.mass, &soil_.saturation, &fold_);
 }
 
 // A species' home blocks before the move (home_before_), and after it which particles it took to

@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "solvers/mpm2grid/boundary/inlet.hpp"
+#include "solvers/mpm2grid/boundary/wall_fold.hpp"
 #include "solvers/mpm2grid/boundary/walls.hpp"
 #include "solvers/mpm2grid/coupling/consistent_drag.hpp"
 #include "solvers/mpm2grid/coupling/drag_solve.hpp"
@@ -189,6 +190,7 @@ class Simulation {
   SimulationSettings<Dim> s_;
   Particles<Dim> water_, soil_;
   BlockGrid<Dim> grid_;
+  WallFold<Dim> fold_;  // the walls' mirror condition in the transfers
   NodeFields<Dim> water_nodes_, soil_nodes_;
   std::vector<Mat<Dim>> soil_tau_, grad_v_;  // the soil's Kirchhoff stresses and velocity gradients
   std::vector<double> divergence_;           // the water's div v

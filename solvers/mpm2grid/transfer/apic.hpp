@@ -15,9 +15,11 @@
 #include <array>
 #include <memory>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "solvers/mpm2grid/boundary/wall_fold.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/grid/node_tile.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
@@ -82,6 +84,9 @@ struct P2GSources {
   // > 0: the forces times fold_dt go into nodes.momentum (m v + dt f, what the lumped and
   // consistent drag solves read; nodes.force is left alone). 0: into nodes.force.
   double fold_dt = 0;
+  // The walls' mirror condition (boundary/wall_fold.hpp): each tile folded before it is added to
+  // the grid, the node pressures read mirrored.
+  const WallFold<Dim>* walls = nullptr;
 };
 
 namespace detail {
@@ -97,8 +102,29 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
   const bool forced = !Fold && (Form != StressForm::none || in.node_pressure);
   const bool extra = in.drag || in.pressure;
   std::vector<double>& extra_field = in.drag ? nodes.drag : nodes.pressure;
-  const auto enter = [&] { in.node_pressure ? tile->gather(kRead, *in.node_pressure) : tile->zero(); };
+  // What each tile field holds, for the walls' fold: the sums it adds, and the pressures it reads.
+  constexpr auto fields = [] {
+    std::array<TileField, kRead + 1> f{};
+    for (int a = 0; a < Dim; ++a) {
+      f[static_cast<std::size_t>(1 + a)] = {TileField::component, a};
+      if constexpr (!Fold) f[static_cast<std::size_t>(1 + Dim + a)] = {TileField::component, a};
+    }
+    f[kRead] = {TileField::untouched};
+    return f;
+  }();
+  constexpr auto read = [] {
+    std::array<TileField, kRead + 1> f{};
+    for (auto& field : f) field = {TileField::untouched};
+    f[kRead] = {TileField::scalar};
+    return f;
+  }();
+  const auto enter = [&] {
+    if (!in.node_pressure) return tile->zero();
+    tile->gather(kRead, *in.node_pressure);
+    if (in.walls) in.walls->mirror(*tile, read);
+  };
   const auto leave = [&] {
+    if (in.walls) in.walls->fold(*tile, fields);
     tile->for_each_node([&](int t, long slot) {
       const auto i = static_cast<std::size_t>(slot);
       nodes.mass[i] += tile->field(0)[t];
@@ -158,15 +184,22 @@ enum class VelocityGradient {
 // G2P over the particles in order: v_p and C_p, with `field` sum_i w_ip field_i into
 // `at_particles` (resized; the soil's saturation from the water's node masses), then
 // each(p, grad v_p) (full), each(p, div v_p) (divergence) or each(p) (none) for the caller to
-// keep what it needs.
+// keep what it needs. With `walls`, the nodes beyond the walls are read as their mirrors
+// (boundary/wall_fold.hpp).
 template <VelocityGradient Gradient, int Dim, class Each>
 void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
-                            const std::vector<double>* field, std::vector<double>* at_particles, Each&& each) {
+                            const std::vector<double>* field, std::vector<double>* at_particles,
+                            const std::type_identity_t<WallFold<Dim>>* walls, Each&& each) {
   if (!field != !at_particles) throw std::invalid_argument("grid_to_particles: a field to sample needs its output");
   using Tile = NodeTile<Dim, Dim + 1>;  // velocity, the sampled field
   auto tile = std::make_unique<Tile>();
   const double inverse_d = apic_inverse_d(grid.spacing());
   if (at_particles) at_particles->resize(P.size());
+  constexpr auto fields = [] {
+    std::array<TileField, Dim + 1> f{};
+    for (int a = 0; a < Dim; ++a) f[static_cast<std::size_t>(a)] = {TileField::component, a};
+    return f;
+  }();
   const auto enter = [&] {
     tile->zero();
     tile->for_each_node([&](int t, long slot) {
@@ -174,6 +207,7 @@ void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const
       for (int a = 0; a < Dim; ++a) tile->field(a)[t] = nodes.velocity[i][a];
       if (field) tile->field(Dim)[t] = (*field)[i];
     });
+    if (walls) walls->mirror(*tile, fields);
   };
   sweep_groups(
       P.x, grid, *tile, enter, [] {},
@@ -205,13 +239,14 @@ void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const
 }
 
 // Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized), and,
-// with `field`, sum_i w_ip field_i per particle into `at_particles` (resized) in the same sweep.
+// with `field`, sum_i w_ip field_i per particle into `at_particles` (resized) in the same sweep;
+// with `walls`, the walls' mirror condition.
 template <int Dim>
 void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
                        std::vector<Mat<Dim>>& grad_v, const std::vector<double>* field = nullptr,
-                       std::vector<double>* at_particles = nullptr) {
+                       std::vector<double>* at_particles = nullptr, const WallFold<Dim>* walls = nullptr) {
   grad_v.resize(P.size());
-  grid_to_particles_each<VelocityGradient::full>(P, grid, nodes, field, at_particles,
+  grid_to_particles_each<VelocityGradient::full>(P, grid, nodes, field, at_particles, walls,
                                                  [&](std::size_t p, const Mat<Dim>& g) { grad_v[p] = g; });
 }
 
