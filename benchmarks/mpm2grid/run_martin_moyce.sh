@@ -5,7 +5,8 @@
 # step phase), the particles, and the front's error against the experiment (the largest and the
 # mean relative error over the published points with T <= 3.0) and, in the chart, against the
 # finest run (the discretization error alone; the experiment's own offset, an inviscid front
-# leading a hand-pulled gate's by 11-20%, does not shrink with h). Resolutions run in turn,
+# leading a hand-pulled gate's by 10-19%, does not shrink with h), and the largest error with the
+# front started later by the best offset dT (the release time the experiment did not record). Resolutions run in turn,
 # REPEATS times; the chart and table (plot_martin_moyce.py) take medians of the times.
 #   benchmarks/mpm2grid/run_martin_moyce.sh [MPM2GRID]     (about 2 min on 2 idle cores; CELLS="8 16 32 64" about 12 min)
 #   env: REPEATS (3), CELLS ("8 16 32"), REFERENCE (../shared/reference/martin_moyce_1952_surge_front.csv),
