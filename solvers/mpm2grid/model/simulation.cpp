@@ -280,12 +280,26 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
                                                        [&](std::size_t p, double div) { divergence_[p] = div; });
 }
 
-// G2P of the soil: v_p, C_p, grad v_p, and the water grid's masses at the particles. The
-// saturation (see the header) comes from these, sampled at the positions the velocities were
-// spread from: the return mapping's cohesion is the step's own.
+// G2P of the soil: v_p, C_p, grad v_p, and the water grid's masses at the particles, each
+// divided by the part of its node's weight inside the walls. The saturation (see the header)
+// comes from these, sampled at the positions the velocities were spread from: the return
+// mapping's cohesion is the step's own.
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
-  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_nodes_.mass, &soil_.saturation, &fold_);
+  water_fill_.resize(grid_.nodes());
+  const double reach = 2 * s_.h;  // a node farther from every wall has its whole weight inside
+  for (std::size_t i = 0; i < grid_.nodes(); ++i) {
+    const double m = water_nodes_.mass[i];
+    water_fill_[i] = m;
+    if (!(m > 0)) continue;
+    const Vec<Dim> x = grid_.position(static_cast<long>(i));
+    bool near = false;
+    for (int d = 0; d < Dim; ++d) near = near || x[d] < s_.walls.lo[d] + reach || x[d] > s_.walls.hi[d] - reach;
+    if (!near) continue;
+    const double inside = fold_.inside_fraction(s_.walls, x, s_.h);
+    water_fill_[i] = inside > 0 ? m / inside : 0.0;
+  }
+  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_fill_, &soil_.saturation, &fold_);
 }
 
 // A species' home blocks before the move (home_before_), and after it which particles it took to
@@ -323,7 +337,7 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
     s_.walls.clamp(water_.x[p]);
   }
   if (dd_) mark_moved(water_, left_home_[0]);
-  soil_velocities();  // leaves the mass sums sum_i w_ip m_w,i in `saturation`
+  soil_velocities();  // leaves the sums sum_i w_ip m_w,i / I_i in `saturation`
   const double full = s_.water.density * std::pow(s_.h, Dim) * s_.soil.porosity;  // kg in a node's pores
   known_stress_.resize(soil_.size());
   if (dd_) record_homes(soil_);
