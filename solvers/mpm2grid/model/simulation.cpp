@@ -280,25 +280,33 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
                                                        [&](std::size_t p, double div) { divergence_[p] = div; });
 }
 
-// G2P of the soil: v_p, C_p, grad v_p, and the water grid's masses at the particles, each
-// divided by the part of its node's weight inside the walls. The saturation (see the header)
-// comes from these, sampled at the positions the velocities were spread from: the return
-// mapping's cohesion is the step's own.
+// The water grid's masses for the saturation (see the header), each divided by the part of its
+// node's weight inside the walls. Only the blocks within two cells of a wall hold nodes with part
+// of their weight outside.
+template <int Dim>
+void Simulation<Dim>::wall_water_fill() {
+  water_fill_ = water_nodes_.mass;
+  constexpr int kSide = BlockGrid<Dim>::kSide;
+  const double reach = 2 * s_.h;
+  for (std::size_t b = 0; b < grid_.blocks(); ++b) {
+    const Index<Dim>& c = grid_.block_coord(b);
+    bool near = false;
+    for (int d = 0; d < Dim; ++d)
+      near = near || c[d] * kSide * s_.h < s_.walls.lo[d] + reach || (c[d] + 1) * kSide * s_.h > s_.walls.hi[d] - reach;
+    if (!near) continue;
+    for (std::size_t i = b * BlockGrid<Dim>::kNodes; i < (b + 1) * BlockGrid<Dim>::kNodes; ++i) {
+      if (!(water_fill_[i] > 0)) continue;
+      const double inside = fold_.inside_fraction(s_.walls, grid_.position(static_cast<long>(i)), s_.h);
+      water_fill_[i] = inside > 0 ? water_fill_[i] / inside : 0.0;
+    }
+  }
+}
+
+// G2P of the soil: v_p, C_p, grad v_p, and the water fill (wall_water_fill()) at the particles.
+// The saturation comes from these, sampled at the positions the velocities were spread from:
+// the return mapping's cohesion is the step's own.
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
-  water_fill_.resize(grid_.nodes());
-  const double reach = 2 * s_.h;  // a node farther from every wall has its whole weight inside
-  for (std::size_t i = 0; i < grid_.nodes(); ++i) {
-    const double m = water_nodes_.mass[i];
-    water_fill_[i] = m;
-    if (!(m > 0)) continue;
-    const Vec<Dim> x = grid_.position(static_cast<long>(i));
-    bool near = false;
-    for (int d = 0; d < Dim; ++d) near = near || x[d] < s_.walls.lo[d] + reach || x[d] > s_.walls.hi[d] - reach;
-    if (!near) continue;
-    const double inside = fold_.inside_fraction(s_.walls, x, s_.h);
-    water_fill_[i] = inside > 0 ? m / inside : 0.0;
-  }
   grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_fill_, &soil_.saturation, &fold_);
 }
 
@@ -337,6 +345,7 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
     s_.walls.clamp(water_.x[p]);
   }
   if (dd_) mark_moved(water_, left_home_[0]);
+  wall_water_fill();
   soil_velocities();  // leaves the sums sum_i w_ip m_w,i / I_i in `saturation`
   const double full = s_.water.density * std::pow(s_.h, Dim) * s_.soil.porosity;  // kg in a node's pores
   known_stress_.resize(soil_.size());

@@ -188,6 +188,7 @@ class Simulation {
   void solid_fractions();
   void mixture_volume_rates(double dt);
   void water_velocities();
+  void wall_water_fill();
   void soil_velocities();
   void record_homes(const Particles<Dim>& P);
   void mark_moved(const Particles<Dim>& P, std::vector<char>& left) const;
