@@ -56,7 +56,6 @@ struct TileField {
 template <int Dim>
 class WallFold {
  public:
-  WallFold() = default;  // folds nothing
   // The folding sides of `walls` (grid spacing h; the sides on grid planes): the slip and sticky
   // walls, but the x_low side when `inlet_on_x_low`.
   WallFold(const Walls<Dim>& walls, double h, bool inlet_on_x_low) {

@@ -5,7 +5,9 @@
 //      stresses (soil: Hencky; water: weakly compressible), the soil's drag coefficients c_E V_p
 //      and its buoyancy from the water's node pressures; gravity;
 //   3. the drag-coupled grid velocity solve (coupling/drag_solve.hpp);
-//   4. wall conditions on both grids;
+//   4. wall conditions on both grids (across slip and sticky walls the grid is also a mirror of
+//      itself: P2G folds the nodes one cell beyond into those one cell inside, G2P reads them
+//      back, boundary/wall_fold.hpp);
 //   5. G2P per species, positions, F_E (soil, then the Drucker-Prager return mapping with the
 //      cohesion of the particle's saturation, sampled in the soil's G2P) and J (water);
 //   6. particles that left through an open side are removed and booked as outflow; the inlet

@@ -8,7 +8,9 @@
 //   G2P  v_p = sum_i w_ip v_i,   C_p = sum_i w_ip v_i (x_i - x_p)^T D^-1,  D^-1 = 3 / h^2,
 //        grad v_p = sum_i v_i (grad w_ip)^T.
 // P2G conserves mass, linear and angular momentum exactly (the weights are a partition of unity
-// and reproduce linear functions); G2P then P2G loses no angular momentum either.
+// and reproduce linear functions); G2P then P2G loses no angular momentum either. The walls'
+// mirror condition (boundary/wall_fold.hpp), where a scene has walls, keeps the mass and the
+// momentum along each wall and reverses the part across it that particles spread beyond it.
 // Both go through a NodeTile per particle group (grid/node_tile.hpp) with the row kernels of
 // transfer/stencil_rows.hpp; they give the same sums for particles in any order, and work
 // fastest in group order (transfer/particle_order.hpp).
