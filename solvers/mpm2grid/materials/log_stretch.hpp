@@ -7,8 +7,9 @@
 //
 // Eigenvalues, descending. 2D: (b00 + b11)/2 + |((b00 - b11)/2, b01)|. 3D: the trigonometric
 // closed form on the deviator of b (Smith 1961): m = tr(b)/3, p = sqrt(tr((b - m I)^2) / 6),
-// cos(3 phi) = det((b - m I) / p) / 2, lambda_1 = m + 2 p cos(phi), lambda_3 = m + 2 p cos(phi +
-// 2 pi / 3), lambda_2 = 3 m - lambda_1 - lambda_3. Where two eigenvalues meet, phi is sensitive
+// cos(3 phi) = det(b - m I) / (2 p^3), lambda_1 = m + 2 p cos(phi), lambda_3 = m + 2 p cos(phi +
+// 2 pi / 3) = m - p (cos(phi) + sqrt(3) sin(phi)) (one sincos), lambda_2 = 3 m - lambda_1 -
+// lambda_3. Where two eigenvalues meet, phi is sensitive
 // (error about sqrt(machine epsilon) times p), but then the strain below hardly depends on them
 // (see there). The smallest is taken from det b = det(F)^2 instead, which keeps it to relative
 // round-off for nearly flat F; two small ones are left to the eigen-solver (`accurate`).
@@ -61,26 +62,30 @@ StretchSpectrum<Dim> stretch_spectrum(const Matrix<Dim>& F) {
     const double p = std::sqrt(dev.squaredNorm() / 6);
     double bottom = m;
     if (p > 0) {
-      const double r = std::clamp((dev / p).determinant() / 2, -1.0, 1.0);
+      const double r = std::clamp(dev.determinant() / (2 * p * p * p), -1.0, 1.0);
       const double phi = std::acos(r) / 3;
-      top = m + 2 * p * std::cos(phi);
-      bottom = m + 2 * p * std::cos(phi + 2 * std::numbers::pi / 3);
+      // cos(phi + 2 pi / 3) = -(cos(phi) + sqrt(3) sin(phi)) / 2: one sincos for both, and a sum
+      // of non-negative terms (phi in [0, pi / 3]).
+      const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+      top = m + 2 * p * cos_phi;
+      bottom = m - p * (cos_phi + std::sqrt(3.0) * sin_phi);
     }
     middle = 3 * m - top - bottom;
   }
-  // The smallest from det b = det(F)^2. (log(top) is taken once: the compiler does not merge
-  // two calls of log, which may set errno.)
+  // The smallest from det b = det(F)^2, with log(top middle) = log(top) + log(middle).
   const double rest = Dim == 2 ? top : top * middle;
   const double log_top = std::log(top);
+  double log_rest = log_top;
   s.lambda[0] = top;
   s.log_sigma[0] = 0.5 * log_top;
   if constexpr (Dim == 3) {
+    const double log_middle = std::log(middle);
     s.lambda[1] = middle;
-    s.log_sigma[1] = 0.5 * std::log(middle);
+    s.log_sigma[1] = 0.5 * log_middle;
     s.accurate = middle > 1e-2 * top;
+    log_rest += log_middle;
   }
   s.lambda[Dim - 1] = det * det / rest;
-  const double log_rest = Dim == 2 ? log_top : std::log(rest);
   s.log_sigma[Dim - 1] = det > 0 ? std::log(det) - 0.5 * log_rest : std::numeric_limits<double>::quiet_NaN();
   return s;
 }
