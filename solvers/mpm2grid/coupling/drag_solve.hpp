@@ -18,7 +18,8 @@ namespace suite::mpm2grid {
 enum class DragScheme { lumped, explicit_euler, consistent };
 
 // Sets soil.velocity and water.velocity on every node with mass (scheme: lumped or explicit_euler).
-// force already holds gravity.
+// The momentum and force sums already hold gravity (P2G spreads m_p g with the other forces) and
+// the soil's loads.
 template <int Dim>
 void solve_grid_velocities(NodeFields<Dim>& soil, NodeFields<Dim>& water, double dt, DragScheme scheme) {
   const std::size_t n = soil.mass.size();

@@ -120,9 +120,11 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::spread(const Particles<Dim>& P, const 
 template <int Dim>
 void Simulation<Dim>::particles_to_grids(double dt) {
   const double fold_dt = s_.drag == DragScheme::explicit_euler ? 0.0 : dt;
-  spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt, .walls = &fold_}, water_nodes_);
+  spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt, .walls = &fold_, .gravity = s_.gravity},
+         water_nodes_);
   if (dd_) dd_->sum_to_owners(water_nodes_);
-  P2GSources<Dim> soil{.tau = &soil_tau_, .drag = &soil_drag_, .fold_dt = fold_dt, .walls = &fold_};
+  P2GSources<Dim> soil{
+      .tau = &soil_tau_, .drag = &soil_drag_, .fold_dt = fold_dt, .walls = &fold_, .gravity = s_.gravity};
   if (s_.buoyancy) {
     auto& p = water_nodes_.pressure;
     for (std::size_t i = 0; i < grid_.nodes(); ++i) p[i] = water_nodes_.mass[i] > 0 ? p[i] / water_nodes_.mass[i] : 0.0;
@@ -142,10 +144,6 @@ void Simulation<Dim>::step(double dt) {
   stresses();
   particles_to_grids(dt);
   if (s_.mixture) solid_fractions();
-  for (std::size_t i = 0; i < grid_.nodes(); ++i) {
-    water_nodes_.force[i] += water_nodes_.mass[i] * s_.gravity;
-    soil_nodes_.force[i] += soil_nodes_.mass[i] * s_.gravity;
-  }
   solve_grid(dt);
   s_.walls.apply(grid_, water_nodes_);
   s_.walls.apply(grid_, soil_nodes_);

@@ -3,7 +3,8 @@
 // one species at a time:
 //   P2G  m_i = sum_p w_ip m_p,   (m v)_i = sum_p w_ip m_p (v_p + C_p (x_i - x_p)),
 //        f_i = -sum_p V_p^0 tau_p grad w_ip   (tau_p the Kirchhoff stress: V^0 P F^T = V^0 tau)
-//              + sum_p w_ip g_p               (g_p a body force on the particle: the buoyancy),
+//              + sum_p w_ip g_p               (g_p a body force on the particle: m_p g, and the
+//                                              soil's buoyancy),
 //        d_i = sum_p (c_E V)_p w_ip           (drag coefficients, soil only, when given);
 //   G2P  v_p = sum_i w_ip v_i,   C_p = sum_i w_ip v_i (x_i - x_p)^T D^-1,  D^-1 = 3 / h^2,
 //        grad v_p = sum_i v_i (grad w_ip)^T.
@@ -89,6 +90,9 @@ struct P2GSources {
   // The walls' mirror condition (boundary/wall_fold.hpp): each tile folded before it is added to
   // the grid, the node pressures read mirrored.
   const WallFold<Dim>* walls = nullptr;
+  // Gravity (m/s^2): the body force m_p g spread with w_ip like the others, so that the walls'
+  // fold treats it as it treats them.
+  Vec<Dim> gravity = Vec<Dim>::Zero();
 };
 
 namespace detail {
@@ -101,7 +105,7 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
   constexpr int kRead = kExtra + 1;
   using Tile = NodeTile<Dim, kRead + 1>;
   auto tile = std::make_unique<Tile>();
-  const bool forced = !Fold && (Form != StressForm::none || in.node_pressure);
+  const bool forced = !Fold && (Form != StressForm::none || in.node_pressure || !in.gravity.isZero(0.0));
   const bool extra = in.drag || in.pressure;
   std::vector<double>& extra_field = in.drag ? nodes.drag : nodes.pressure;
   // What each tile field holds, for the walls' fold: the sums it adds, and the pressures it reads.
@@ -140,8 +144,8 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
   sweep_groups(P.x, grid, *tile, enter, leave, [&](std::size_t p, const StencilRows<Dim>& s, int first) {
     if constexpr (Form == StressForm::full) S = P.volume0[p] * (*in.tau)[p];
     if constexpr (Form == StressForm::isotropic) S(0, 0) = -P.volume0[p] * P.J[p] * (*in.pressure)[p];
-    Vec<Dim> g = Vec<Dim>::Zero();
-    if (in.node_pressure) g = -(*in.solid_volume)[p] * sample_field<false, kAllAxes>(*tile, kRead, s, first).gradient;
+    Vec<Dim> g = P.mass[p] * in.gravity;
+    if (in.node_pressure) g -= (*in.solid_volume)[p] * sample_field<false, kAllAxes>(*tile, kRead, s, first).gradient;
     const double e = !extra ? 0.0 : in.drag ? (*in.drag)[p] : P.mass[p] * (*in.pressure)[p];
     scatter_apic<Form, Fold>(*tile, s, first, P.mass[p], P.v[p], P.C[p], S, g, in.fold_dt, extra ? kExtra : -1, e);
   });
