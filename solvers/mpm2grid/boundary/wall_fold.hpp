@@ -99,8 +99,7 @@ class WallFold {
         const int out = side == 0 ? -1 : 1;
         if (!s.folds || node[d] != s.wall + out) continue;
         node[d] = s.wall - out;
-        for (int a = 0; a < Dim; ++a)
-          if (s.sticky || a == d) value[a] = -value[a];
+        for (int a = 0; a < Dim; ++a) value[a] *= sign({TileField::component, a}, s, d);
       }
   }
 
