@@ -9,9 +9,8 @@
 // closed form on the deviator of b (Smith 1961): m = tr(b)/3, p = sqrt(tr((b - m I)^2) / 6),
 // cos(3 phi) = det(b - m I) / (2 p^3), lambda_1 = m + 2 p cos(phi), lambda_3 = m + 2 p cos(phi +
 // 2 pi / 3) = m - p (cos(phi) + sqrt(3) sin(phi)) (one sincos), lambda_2 = 3 m - lambda_1 -
-// lambda_3. Where two eigenvalues meet, phi is sensitive
-// (error about sqrt(machine epsilon) times p), but then the strain below hardly depends on them
-// (see there). The smallest is taken from det b = det(F)^2 instead, which keeps it to relative
+// lambda_3. Where two eigenvalues meet, phi is sensitive (error about sqrt(machine epsilon)
+// times p), but then the strain below hardly depends on them (see there). The smallest is taken from det b = det(F)^2 instead, which keeps it to relative
 // round-off for nearly flat F; two small ones are left to the eigen-solver (`accurate`).
 //
 // log b as a polynomial in b: Newton's interpolation of log at the eigenvalues a >= b' [>= c],
@@ -28,7 +27,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "solvers/mpm2grid/materials/polar_svd.hpp"
 
