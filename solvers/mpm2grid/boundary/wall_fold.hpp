@@ -166,8 +166,13 @@ class WallFold {
         const int out = side == 0 ? -1 : 1;
         const int beyond = s.wall + out - origin[d], mirror = s.wall - out - origin[d];
         if (beyond < 0 || beyond >= Tile::kSide || mirror < 0 || mirror >= Tile::kSide) continue;
-        for (int t = 0; t < Tile::kSize; ++t)
-          if ((t / stride) % Tile::kSide == beyond) f(t, t + (mirror - beyond) * stride, s, d);
+        // The plane of the beyond nodes, in ascending tile index: the axes below d (low) and
+        // above it (high).
+        for (int high = 0; high < Tile::kSize / (stride * Tile::kSide); ++high)
+          for (int low = 0; low < stride; ++low) {
+            const int t = low + stride * (beyond + Tile::kSide * high);
+            f(t, t + (mirror - beyond) * stride, s, d);
+          }
       }
   }
 

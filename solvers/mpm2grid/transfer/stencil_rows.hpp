@@ -19,6 +19,14 @@
 
 namespace suite::mpm2grid {
 
+namespace rows {
+// Four doubles as one value of GCC's vector extension: one AVX register, or two SSE2 registers on
+// the baseline (kernels/vector_clones.hpp). Copied in and out with memcpy (rows start at any
+// double), and never passed by value (that would tie the functions to one calling convention).
+// The operations are elementwise, in the order written: the same rounding as scalar code.
+using Four = double __attribute__((vector_size(4 * sizeof(double))));
+}  // namespace rows
+
 template <int Dim>
 struct StencilRows {
   static constexpr int kRows = Dim == 2 ? 4 : 16;
@@ -28,9 +36,13 @@ struct StencilRows {
   alignas(32) double wx[4];   // weights along x
   alignas(32) double dwx[4];  // their d/dx, 1/m
   alignas(32) double wxo[4];  // wx_i (x_i - x_p), m
-  double w[kRows];            // row weights W_r
-  double dw[kCross][kRows];   // dW_r/dy[, dW_r/dz], 1/m
-  double wo[kCross][kRows];   // W_r (y_j - y_p)[, W_r (z_k - z_p)], m
+  alignas(32) double w[kRows];           // row weights W_r
+  alignas(32) double dw[kCross][kRows];  // dW_r/dy[, dW_r/dz], 1/m
+  alignas(32) double wo[kCross][kRows];  // W_r (y_j - y_p)[, W_r (z_k - z_p)], m
+  // The row factors per axis across, e = 0 for y[, 1 for z]: W_r = wa[0][j] [wa[1][k]].
+  alignas(32) double wa[kCross][4];   // weights
+  alignas(32) double dwa[kCross][4];  // their derivatives, 1/m
+  alignas(32) double wao[kCross][4];  // weights times offsets, m
 
   StencilRows(const Vec<Dim>& x, double h) {
     // in_cells() as in stencil_base(): the first node is the one touch_blocks() activated for.
@@ -44,59 +56,32 @@ struct StencilRows {
       }
     }
     for (int i = 0; i < 4; ++i) wx[i] = a[0][i], dwx[i] = da[0][i], wxo[i] = a[0][i] * o[0][i];
-    for (int r = 0; r < kRows; ++r) {
-      const int j = r & 3;
-      if constexpr (Dim == 2) {
-        w[r] = a[1][j];
-        dw[0][r] = da[1][j];
-        wo[0][r] = a[1][j] * o[1][j];
-      } else {
-        const int k = r >> 2;
-        w[r] = a[1][j] * a[2][k];
-        dw[0][r] = da[1][j] * a[2][k];
-        dw[1][r] = a[1][j] * da[2][k];
-        wo[0][r] = w[r] * o[1][j];
-        wo[1][r] = w[r] * o[2][k];
+    for (int e = 0; e < kCross; ++e)
+      for (int i = 0; i < 4; ++i)
+        wa[e][i] = a[1 + e][i], dwa[e][i] = da[1 + e][i], wao[e][i] = a[1 + e][i] * o[1 + e][i];
+    if constexpr (Dim == 2) {
+      for (int j = 0; j < 4; ++j) w[j] = a[1][j], dw[0][j] = da[1][j], wo[0][j] = a[1][j] * o[1][j];
+    } else {
+      // The four rows j = 0 .. 3 at one z place k as vector values (the same products as row by
+      // row): 20 vector products instead of 80 scalar ones, a saving in every transfer.
+      rows::Four ay, day, oy;
+      std::memcpy(&ay, a[1], sizeof ay);
+      std::memcpy(&day, da[1], sizeof day);
+      std::memcpy(&oy, o[1], sizeof oy);
+      const auto store = [](double* at, const rows::Four& f) { std::memcpy(at, &f, sizeof f); };
+      for (int k = 0; k < 4; ++k) {
+        const rows::Four W = ay * a[2][k];
+        store(w + 4 * k, W);
+        store(dw[0] + 4 * k, day * a[2][k]);
+        store(dw[1] + 4 * k, ay * da[2][k]);
+        store(wo[0] + 4 * k, W * oy);
+        store(wo[1] + 4 * k, W * o[2][k]);
       }
     }
   }
 };
 
 namespace rows {
-
-// Four doubles as one value of GCC's vector extension: one AVX register, or two SSE2 registers on
-// the baseline (kernels/vector_clones.hpp). Copied in and out with memcpy (rows start at any
-// double), and never passed by value (that would tie the functions to one calling convention).
-// The operations are elementwise, in the order written: the same rounding as scalar code.
-using Four = double __attribute__((vector_size(4 * sizeof(double))));
-
-// row[i] += a x[i] (+ b y[i]), i = 0..3.
-inline void axpy4(double* row, double a, const double* x) {
-  Four r, u;
-  std::memcpy(&r, row, sizeof r);
-  std::memcpy(&u, x, sizeof u);
-  r += a * u;
-  std::memcpy(row, &r, sizeof r);
-}
-inline void axpy4(double* row, double a, const double* x, double b, const double* y) {
-  Four r, u, w;
-  std::memcpy(&r, row, sizeof r);
-  std::memcpy(&u, x, sizeof u);
-  std::memcpy(&w, y, sizeof w);
-  r += a * u + b * w;
-  std::memcpy(row, &r, sizeof r);
-}
-
-// row[i] += a x[i] + b y[i] + c z[i], i = 0..3.
-inline void axpy4(double* row, double a, const double* x, double b, const double* y, double c, const double* z) {
-  Four r, u, w, t;
-  std::memcpy(&r, row, sizeof r);
-  std::memcpy(&u, x, sizeof u);
-  std::memcpy(&w, y, sizeof w);
-  std::memcpy(&t, z, sizeof t);
-  r += a * u + b * w + c * t;
-  std::memcpy(row, &r, sizeof r);
-}
 
 // sums[k] = (m_k[0] + m_k[1]) + (m_k[2] + m_k[3]), k = 0 .. 3: four dot products at once from
 // their elementwise products m_k, with vector shuffles instead of scalar adds.
@@ -179,11 +164,12 @@ FieldSample<Dim> contract(const StencilRows<Dim>& s, const Four& P, const Four* 
 // Samples the tile fields f0, f0 + 1, ... (one per Gradient given) at a particle whose stencil
 // starts at tile index `first`: each one's value, with Moment its moment, and its gradient
 // components along its Gradient axes (the others are left 0; a divergence needs one per velocity
-// component). The sums over the rows are vector values in a fully unrolled loop, so that the
+// component). The sums over the rows are vector values in fully unrolled loops, so that the
 // compiler keeps them in registers (as arrays updated through memory they made a chain of stores
-// and reloads per row: 1.2x on the 3D step). The fields go through the rows together, sharing
-// each row's weights (measured as fast as one field after the other, not faster). The same
-// operations in the same order per field as axpy4's.
+// and reloads per row: 1.2x on the 3D step). In 3D the sums are factored by axis, one field after
+// the other (8 sums in registers; 1.13x on the 3D step against 5 per row, all fields together,
+// whose 15 sums spilled); in 2D the fields go through the rows together, sharing each row's
+// weights.
 template <bool Moment, Axes... Gradient, int Dim, int Fields>
 std::array<FieldSample<Dim>, sizeof...(Gradient)> sample_fields(const NodeTile<Dim, Fields>& tile, int f0,
                                                                 const StencilRows<Dim>& s, int first) {
@@ -192,28 +178,64 @@ std::array<FieldSample<Dim>, sizeof...(Gradient)> sample_fields(const NodeTile<D
   constexpr int kCross = StencilRows<Dim>::kCross;
   constexpr int kN = sizeof...(Gradient);
   constexpr std::array<Axes, kN> kGradient{Gradient...};
-  Four P[kN]{};          // sum_r W_r F_ri
-  Four Q[kN][kCross]{};  // sum_r W_r o_r F_ri (moments across)
-  Four D[kN][kCross]{};  // sum_r dW_r F_ri (gradient across)
   const double* F = tile.field(f0) + first;
-#pragma GCC unroll 16
-  for (int r = 0; r < StencilRows<Dim>::kRows; ++r) {
+  std::array<FieldSample<Dim>, kN> out;
+  if constexpr (Dim == 3) {
+    // Factored by axis: per z place c, sums over the four rows j with the y factors (A, B, G),
+    // then those summed with the z factors. 3 products per row and field and 5 per z place
+    // instead of 5 per row (a sample with moment and full gradient: 68 vector products, not 80),
+    // with 8 sums in registers per field, one field after the other.
+    [&]<int... k>(std::integer_sequence<int, k...>) {
+      ((out[k] =
+            [&] {
+              constexpr Axes G = kGradient[k];
+              Four P{}, Q[2]{}, D[2]{};
 #pragma GCC unroll 4
-    for (int k = 0; k < kN; ++k) {
-      Four row;
-      std::memcpy(&row, F + k * Tile::kSize + Tile::row_offset(r), sizeof row);
-      P[k] += s.w[r] * row;
-      for (int e = 0; e < kCross; ++e) {
-        if constexpr (Moment) Q[k][e] += s.wo[e][r] * row;
-        if (kGradient[k].has(1 + e)) D[k][e] += s.dw[e][r] * row;  // constant: folded
+              for (int c = 0; c < 4; ++c) {
+                Four A{}, B{}, Gy{};
+#pragma GCC unroll 4
+                for (int j = 0; j < 4; ++j) {
+                  Four row;
+                  std::memcpy(&row, F + k * Tile::kSize + Tile::row_offset(j + 4 * c), sizeof row);
+                  A += s.wa[0][j] * row;
+                  if constexpr (Moment) B += s.wao[0][j] * row;
+                  if constexpr (G.has(1)) Gy += s.dwa[0][j] * row;
+                }
+                P += s.wa[1][c] * A;
+                if constexpr (Moment) {
+                  Q[0] += s.wa[1][c] * B;
+                  Q[1] += s.wao[1][c] * A;
+                }
+                if constexpr (G.has(1)) D[0] += s.wa[1][c] * Gy;
+                if constexpr (G.has(2)) D[1] += s.dwa[1][c] * A;
+              }
+              return rows::contract<Moment, G>(s, P, Q, D);
+            }()),
+       ...);
+    }
+    (std::make_integer_sequence<int, kN>{});
+  } else {
+    Four P[kN]{};          // sum_r W_r F_ri
+    Four Q[kN][kCross]{};  // sum_r W_r o_r F_ri (moments across)
+    Four D[kN][kCross]{};  // sum_r dW_r F_ri (gradient across)
+#pragma GCC unroll 4
+    for (int r = 0; r < StencilRows<Dim>::kRows; ++r) {
+#pragma GCC unroll 4
+      for (int k = 0; k < kN; ++k) {
+        Four row;
+        std::memcpy(&row, F + k * Tile::kSize + Tile::row_offset(r), sizeof row);
+        P[k] += s.w[r] * row;
+        for (int e = 0; e < kCross; ++e) {
+          if constexpr (Moment) Q[k][e] += s.wo[e][r] * row;
+          if (kGradient[k].has(1 + e)) D[k][e] += s.dw[e][r] * row;  // constant: folded
+        }
       }
     }
+    [&]<int... k>(std::integer_sequence<int, k...>) {
+      ((out[k] = rows::contract<Moment, kGradient[k]>(s, P[k], Q[k], D[k])), ...);
+    }
+    (std::make_integer_sequence<int, kN>{});
   }
-  std::array<FieldSample<Dim>, kN> out;
-  [&]<int... k>(std::integer_sequence<int, k...>) {
-    ((out[k] = rows::contract<Moment, kGradient[k]>(s, P[k], Q[k], D[k])), ...);
-  }
-  (std::make_integer_sequence<int, kN>{});
   return out;
 }
 
@@ -231,14 +253,15 @@ enum class StressForm { none, isotropic, full };
 // (momentum), with the force on each node
 //   f_i = -S grad w_ip + w_ip g     (S = V0 tau: S(0, 0) I when isotropic; g a body force, N)
 // either into fields Dim + 1 .. 2 Dim (Fold false) or, times dt, into the momentum fields (Fold
-// true: the node then holds m v + dt f, which is all the lumped and consistent drag solves read;
-// one 3-term row update per axis instead of two 2-term ones, and Dim fewer fields):
+// true: the node then holds m v + dt f, which is all the lumped and consistent drag solves read,
+// and Dim fewer fields):
 //   m w_ip,   m w_ip (v + C (x_i - x_p)) [+ dt f_i],   [f_i],
 // and, with extra_field >= 0, e w_ip into that field (the drag coefficients or pressures).
-// Each row's update is a few x vectors times per-row coefficients; the coefficients (W_r times
-// the particle's values) are computed for four rows at a time as vector values, in the same
-// operations and order as one row at a time: 4x fewer instructions for them, 1.08x on the 3D
-// step.
+// Each row's update is W_r times a vector along x fixed for the particle (the mass m wx, the
+// extra e wx, and the parts of the momentum and force along x: m C_a0 wxo, -S_a0 dwx) plus a
+// per-row coefficient times wx (the rest, from the offsets and derivatives across): two products
+// per row and momentum component. The per-row coefficients are computed for four rows at a time
+// as vector values: 4x fewer instructions for them.
 template <StressForm Form, bool Fold, int Dim, int Fields>
 void scatter_apic(NodeTile<Dim, Fields>& tile, const StencilRows<Dim>& s, int first, double m, const Vec<Dim>& v,
                   const Mat<Dim>& C, const Mat<Dim>& S, const Vec<Dim>& g, double dt, int extra_field = -1,
@@ -251,63 +274,70 @@ void scatter_apic(NodeTile<Dim, Fields>& tile, const StencilRows<Dim>& s, int fi
   const Vec<Dim> mv = m * v;
   const Mat<Dim> mC = m * C;
   const bool forced = Form != StressForm::none || !g.isZero(0.0);
-  // Per-row coefficients: mass m W_r; momentum along wx (alpha [+ dt delta]), along wxo (beta)
-  // [and along dwx, dt gamma]; force along dwx (gamma) and wx (delta); extra e W_r. With
-  //   alpha = W_r m v_a + sum_e m C_a,e+1 o_e,r,  beta = W_r m C_a0,
-  //   gamma = -S_a0 W_r,  delta = W_r g_a - sum_e S_a,e+1 dW_r,e.
-  alignas(32) double mass[kRows], along_wx[Dim][kRows], along_wxo[Dim][kRows], along_dwx[Dim][kRows],
-      force_wx[Dim][kRows], extra[kRows];
+  // Whether S_a0 (the stress's part along x of component a) is there.
+  constexpr auto along_x = [](int a) { return Form == StressForm::full || (Form == StressForm::isotropic && a == 0); };
+  const auto load = [](Four& f, const double* at) { std::memcpy(&f, at, sizeof f); };
   const auto store = [](double* at, const Four& f) { std::memcpy(at, &f, sizeof f); };
+  const auto add = [&](double* at, const Four& f) {
+    Four r;
+    load(r, at);
+    r += f;
+    store(at, r);
+  };
+  Four wx, wxo, dwx;
+  load(wx, s.wx), load(wxo, s.wxo), load(dwx, s.dwx);
+  // The vectors along x that W_r multiplies.
+  const Four mass_x = m * wx, extra_x = e * wx;
+  Four momentum_x[Dim], force_x[Dim];
+  for (int a = 0; a < Dim; ++a) {
+    momentum_x[a] = mC(a, 0) * wxo;
+    force_x[a] = Four{};
+    if (along_x(a)) {
+      if constexpr (Fold)
+        momentum_x[a] -= (dt * S(a, 0)) * dwx;
+      else
+        force_x[a] = -S(a, 0) * dwx;
+    }
+  }
+  // The per-row coefficients of wx: momentum alpha [+ dt delta], force delta, with
+  //   alpha = W_r m v_a + sum_e m C_a,e+1 o_e,r,  delta = W_r g_a - sum_e S_a,e+1 dW_r,e.
+  alignas(32) double along_wx[Dim][kRows], force_wx[Dim][kRows];
   for (int q = 0; q < kRows; q += 4) {
     Four W, wo[kCross], dw[kCross];
-    std::memcpy(&W, s.w + q, sizeof W);
-    for (int c = 0; c < kCross; ++c) {
-      std::memcpy(&wo[c], s.wo[c] + q, sizeof W);
-      std::memcpy(&dw[c], s.dw[c] + q, sizeof W);
-    }
-    store(mass + q, m * W);
-    if (extra_field >= 0) store(extra + q, e * W);
+    load(W, s.w + q);
+    for (int c = 0; c < kCross; ++c) load(wo[c], s.wo[c] + q), load(dw[c], s.dw[c] + q);
     for (int a = 0; a < Dim; ++a) {
       Four alpha = W * mv[a];
       for (int c = 0; c < kCross; ++c) alpha += mC(a, 1 + c) * wo[c];
-      const Four beta = W * mC(a, 0);
-      Four gamma{}, delta = W * g[a];
+      Four delta = W * g[a];
       if constexpr (Form == StressForm::full) {
-        gamma = -S(a, 0) * W;
         for (int c = 0; c < kCross; ++c) delta -= S(a, 1 + c) * dw[c];
       } else if constexpr (Form == StressForm::isotropic) {
-        if (a == 0)
-          gamma = -S(0, 0) * W;
-        else
-          delta -= S(0, 0) * dw[a - 1];
+        if (a > 0) delta -= S(0, 0) * dw[a - 1];
       }
-      store(along_wxo[a] + q, beta);
       if constexpr (Fold) {
         store(along_wx[a] + q, alpha + dt * delta);
-        store(along_dwx[a] + q, dt * gamma);
       } else {
         store(along_wx[a] + q, alpha);
-        store(along_dwx[a] + q, gamma);
         store(force_wx[a] + q, delta);
       }
     }
   }
   for (int r = 0; r < kRows; ++r) {
     const int at = first + Tile::row_offset(r);
-    rows::axpy4(tile.field(0) + at, mass[r], s.wx);
+    const double W = s.w[r];
+    add(tile.field(0) + at, W * mass_x);
     for (int a = 0; a < Dim; ++a) {
-      double* momentum = tile.field(1 + a) + at;
-      if constexpr (Fold) {
-        if (Form == StressForm::full || (Form == StressForm::isotropic && a == 0))
-          rows::axpy4(momentum, along_wx[a][r], s.wx, along_wxo[a][r], s.wxo, along_dwx[a][r], s.dwx);
+      add(tile.field(1 + a) + at, along_wx[a][r] * wx + W * momentum_x[a]);
+      if constexpr (!Fold) {
+        if (!forced) continue;
+        if (along_x(a))
+          add(tile.field(1 + Dim + a) + at, force_wx[a][r] * wx + W * force_x[a]);
         else
-          rows::axpy4(momentum, along_wx[a][r], s.wx, along_wxo[a][r], s.wxo);
-      } else {
-        rows::axpy4(momentum, along_wx[a][r], s.wx, along_wxo[a][r], s.wxo);
-        if (forced) rows::axpy4(tile.field(1 + Dim + a) + at, along_dwx[a][r], s.dwx, force_wx[a][r], s.wx);
+          add(tile.field(1 + Dim + a) + at, force_wx[a][r] * wx);
       }
     }
-    if (extra_field >= 0) rows::axpy4(tile.field(extra_field) + at, extra[r], s.wx);
+    if (extra_field >= 0) add(tile.field(extra_field) + at, W * extra_x);
   }
 }
 
