@@ -328,9 +328,24 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mark_moved(const Particles<Dim>& P, st
 // The particle updates after G2P, compiled for the baseline only with the return mapping inlined
 // (kernels/vector_clones.hpp, SUITE_INLINE_CALLS): the 2D step 1.04x faster. (Updating each particle
 // inside the G2P sweep instead, its gradient never stored, measured 10% slower in 2D.)
+namespace {
+// The trial deformation gradient (I + dt grad v) F as F + dt (grad v F), in scalar code (the 3D
+// step 1.04x faster than Eigen's product with the sum).
+template <int Dim>
+Mat<Dim> trial_deformation(const Mat<Dim>& grad_v, const Mat<Dim>& F, double dt) {
+  Mat<Dim> out;
+  for (int j = 0; j < Dim; ++j)
+    for (int i = 0; i < Dim; ++i) {
+      double v = grad_v(i, 0) * F(0, j);
+      for (int k = 1; k < Dim; ++k) v += grad_v(i, k) * F(k, j);
+      out(i, j) = F(i, j) + dt * v;
+    }
+  return out;
+}
+}  // namespace
+
 template <int Dim>
 SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
-  const Mat<Dim> I = Mat<Dim>::Identity();
   // Over several ranks, which particles the move takes to another home block (left_home_):
   // their home blocks before the move, compared after it.
   for (auto& left : left_home_) left.clear();
@@ -351,7 +366,7 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   for (std::size_t p = 0; p < soil_.size(); ++p) {
     soil_.saturation[p] = std::clamp(soil_.saturation[p] / full, 0.0, 1.0);
     soil_.x[p] += dt * soil_.v[p];
-    const Mat<Dim> trial = (I + dt * grad_v_[p]) * soil_.F[p];
+    const Mat<Dim> trial = trial_deformation(grad_v_[p], soil_.F[p], dt);
     const auto r = s_.soil.material.template project<Dim>(trial, soil_.log_jp[p], soil_.saturation[p]);
     soil_.F[p] = r.F;
     soil_.log_jp[p] = r.log_jp;
