@@ -50,6 +50,20 @@ StrainReturn<Dim> HenckyDruckerPrager::return_strain(const Vector<Dim>& eps_tria
 
 template <int Dim>
 ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const {
+  return project<Dim>(F_trial, stretch_spectrum<Dim>(F_trial), log_jp, saturation);
+}
+
+template <int Dim, int N>
+void HenckyDruckerPrager::project_all(const Matrix<Dim>* F_trial, const double* log_jp, const double* saturation,
+                                      ReturnResult<Dim>* out) const {
+  StretchSpectrum<Dim> s[N];
+  stretch_spectra<Dim, N>(F_trial, s);
+  for (int n = 0; n < N; ++n) out[n] = project<Dim>(F_trial[n], s[n], log_jp[n], saturation[n]);
+}
+
+template <int Dim>
+ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, const StretchSpectrum<Dim>& s, double log_jp,
+                                               double saturation) const {
   const double shift = volume_correction ? log_jp : 0.0;  // log-volume added to the trial strain
   // An elastic return: U exp(eps + shift/Dim) V^T = exp(shift/Dim) F_trial, no round-off from U;
   // log_jp goes to 0 (the trace is kept) or through without the correction; the stress, where
@@ -62,9 +76,8 @@ ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, doubl
     if (out.has_stress) out.stress = stress();
     return out;
   };
-  // The yield test needs the principal strains alone, and an elastic return's stress the strain
-  // tensor from them (log_stretch.hpp): the principal directions only for a plastic one.
-  const StretchSpectrum<Dim> s = stretch_spectrum<Dim>(F_trial);
+  // The yield test needs the principal strains alone (s), and an elastic return's stress the
+  // strain tensor from them (log_stretch.hpp): the principal directions only for a plastic one.
   if (s.accurate &&
       return_strain<Dim>((s.log_sigma.array() + shift / Dim).matrix(), saturation).kind == ReturnCase::elastic)
     return elastic([&] { return hencky_stress<Dim>(log_left_stretch<Dim>(s), s.log_sigma.sum()); });

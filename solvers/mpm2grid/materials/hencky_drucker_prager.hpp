@@ -123,6 +123,9 @@ StressInvariants kirchhoff_invariants(const Matrix<Dim>& tau) {
   return {-mean, std::sqrt(1.5) * dev.norm()};
 }
 
+template <int Dim>
+struct StretchSpectrum;  // materials/log_stretch.hpp
+
 struct HenckyDruckerPrager {
   // A default-constructed material has zero stiffness and is not usable as is: build real
   // ones with from_young().
@@ -184,8 +187,18 @@ struct HenckyDruckerPrager {
   // exp(log_jp / Dim) when the volume correction has something stored), with no round-off.
   template <int Dim>
   ReturnResult<Dim> project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const;
+  // project() of N particles at once, out[n] as project(F_trial[n], log_jp[n], saturation[n])
+  // alone: their spectra computed together (stretch_spectra in log_stretch.hpp), whose chains of
+  // dependent operations then overlap (the 3D step 1.05x faster with N = 4).
+  template <int Dim, int N>
+  void project_all(const Matrix<Dim>* F_trial, const double* log_jp, const double* saturation,
+                   ReturnResult<Dim>* out) const;
 
  private:
+  // project() given the spectrum s of F_trial.
+  template <int Dim>
+  ReturnResult<Dim> project(const Matrix<Dim>& F_trial, const StretchSpectrum<Dim>& s, double log_jp,
+                            double saturation) const;
   // Kirchhoff stress 2 mu log V + lambda log J I of a Hencky strain tensor log V, log J = tr log V.
   template <int Dim>
   Matrix<Dim> hencky_stress(const Matrix<Dim>& log_v, double log_j) const;
