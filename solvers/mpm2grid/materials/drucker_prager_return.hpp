@@ -58,12 +58,15 @@ void HenckyDruckerPrager::project_all(const Matrix<Dim>* F_trial, const double* 
                                       ReturnResult<Dim>* out) const {
   StretchSpectrum<Dim> s[N];
   stretch_spectra<Dim, N>(F_trial, s);
-  for (int n = 0; n < N; ++n) out[n] = project<Dim>(F_trial[n], s[n], log_jp[n], saturation[n]);
+  // The strain tensors of all N, of which the elastic returns use theirs.
+  Matrix<Dim> log_v[N];
+  log_left_stretches<Dim, N>(s, log_v);
+  for (int n = 0; n < N; ++n) out[n] = project<Dim>(F_trial[n], s[n], log_jp[n], saturation[n], &log_v[n]);
 }
 
 template <int Dim>
 ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, const StretchSpectrum<Dim>& s, double log_jp,
-                                               double saturation) const {
+                                               double saturation, const Matrix<Dim>* log_v) const {
   const double shift = volume_correction ? log_jp : 0.0;  // log-volume added to the trial strain
   // An elastic return: U exp(eps + shift/Dim) V^T = exp(shift/Dim) F_trial, no round-off from U;
   // log_jp goes to 0 (the trace is kept) or through without the correction; the stress, where
@@ -80,7 +83,7 @@ ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, const
   // strain tensor from them (log_stretch.hpp): the principal directions only for a plastic one.
   if (s.accurate &&
       return_strain<Dim>((s.log_sigma.array() + shift / Dim).matrix(), saturation).kind == ReturnCase::elastic)
-    return elastic([&] { return hencky_stress<Dim>(log_left_stretch<Dim>(s), s.log_sigma.sum()); });
+    return elastic([&] { return hencky_stress<Dim>(log_v ? *log_v : log_left_stretch<Dim>(s), s.log_sigma.sum()); });
 
   const LeftStretch<Dim> b = left_stretch<Dim>(F_trial);
   const Vector<Dim> eps = (b.log_sigma.array() + shift / Dim).matrix();

@@ -195,10 +195,10 @@ struct HenckyDruckerPrager {
                    ReturnResult<Dim>* out) const;
 
  private:
-  // project() given the spectrum s of F_trial.
+  // project() given the spectrum s of F_trial (and its log V, when known).
   template <int Dim>
-  ReturnResult<Dim> project(const Matrix<Dim>& F_trial, const StretchSpectrum<Dim>& s, double log_jp,
-                            double saturation) const;
+  ReturnResult<Dim> project(const Matrix<Dim>& F_trial, const StretchSpectrum<Dim>& s, double log_jp, double saturation,
+                            const Matrix<Dim>* log_v = nullptr) const;
   // Kirchhoff stress 2 mu log V + lambda log J I of a Hencky strain tensor log V, log J = tr log V.
   template <int Dim>
   Matrix<Dim> hencky_stress(const Matrix<Dim>& log_v, double log_j) const;

@@ -125,37 +125,55 @@ StretchSpectrum<Dim> stretch_spectrum(const Matrix<Dim>& F) {
   return s;
 }
 
-// log V = log(b) / 2 (the Hencky strain tensor) from a spectrum with det F > 0.
+// log V = log(b) / 2 (the Hencky strain tensor) of N spectra with det F > 0, stage by stage
+// across them as stretch_spectra (in 3D the log1p calls of all N, then the rest); each gets the
+// same operations as alone (log_left_stretch).
+template <int Dim, int N>
+void log_left_stretches(const StretchSpectrum<Dim>* s, Matrix<Dim>* out) {
+  const Matrix<Dim> I = Matrix<Dim>::Identity();
+  if constexpr (Dim == 2) {
+    for (int n = 0; n < N; ++n) {
+      const double a = s[n].lambda[0], b = s[n].lambda[1];
+      const double ab = a == b ? 1 / b : 2 * (s[n].log_sigma[0] - s[n].log_sigma[1]) / (a - b);
+      out[n] = 0.5 * (2 * s[n].log_sigma[0] * I + ab * (s[n].b - a * I));
+    }
+  } else {
+    // log[x, y] for (x, y) = (a, b') and (b', c): log1p((x - y) / y) / (x - y), 1 / y when equal.
+    double first[2][N];
+    for (int k = 0; k < 2; ++k)
+      for (int n = 0; n < N; ++n) {
+        const double x = s[n].lambda[k], y = s[n].lambda[k + 1];
+        first[k][n] = x == y ? 1 / y : std::log1p((x - y) / y) / (x - y);
+      }
+    for (int n = 0; n < N; ++n) {
+      const double a = s[n].lambda[0], b = s[n].lambda[1], c = s[n].lambda[2];
+      const double ab = first[0][n];
+      double abc;
+      if (std::abs(a - c) < 1e-4 * c) {
+        // log''/2 + log'''/6 (u + v) + log''''/24 (u^2 + u v + v^2) about b, u = a - b, v = c - b
+        const double u = a - b, v = c - b, ib = 1 / b;
+        abc = ib * ib * (-0.5 + ib * ((u + v) / 3 - ib * (u * u + u * v + v * v) / 4));
+      } else {
+        abc = (ab - first[1][n]) / (a - c);
+      }
+      // 0.5 (2 log sigma_0 I + ab A + abc A B), A = b - a I, B = b - b' I: A and B commute, so
+      // A B is symmetric; its upper triangle, mirrored.
+      Matrix<3> A = s[n].b, B = s[n].b;
+      for (int i = 0; i < 3; ++i) A(i, i) -= a, B(i, i) -= b;
+      for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j) {
+          const double AB = A(i, 0) * B(0, j) + A(i, 1) * B(1, j) + A(i, 2) * B(2, j);
+          out[n](i, j) = out[n](j, i) = 0.5 * ((i == j ? 2 * s[n].log_sigma[0] : 0.0) + ab * A(i, j) + abc * AB);
+        }
+    }
+  }
+}
+
 template <int Dim>
 Matrix<Dim> log_left_stretch(const StretchSpectrum<Dim>& s) {
-  const Matrix<Dim> I = Matrix<Dim>::Identity();
-  const double a = s.lambda[0], b = s.lambda[1];
-  if constexpr (Dim == 2) {
-    const double ab = a == b ? 1 / b : 2 * (s.log_sigma[0] - s.log_sigma[1]) / (a - b);
-    return 0.5 * (2 * s.log_sigma[0] * I + ab * (s.b - a * I));
-  } else {
-    const double c = s.lambda[2];
-    const auto first = [](double x, double y) { return x == y ? 1 / y : std::log1p((x - y) / y) / (x - y); };
-    const double ab = first(a, b);
-    double abc;
-    if (std::abs(a - c) < 1e-4 * c) {
-      // log''/2 + log'''/6 (u + v) + log''''/24 (u^2 + u v + v^2) about b, u = a - b, v = c - b
-      const double u = a - b, v = c - b, ib = 1 / b;
-      abc = ib * ib * (-0.5 + ib * ((u + v) / 3 - ib * (u * u + u * v + v * v) / 4));
-    } else {
-      abc = (ab - first(b, c)) / (a - c);
-    }
-    // 0.5 (2 log sigma_0 I + ab A + abc A B), A = b - a I, B = b - b' I: A and B commute, so A B
-    // is symmetric; its upper triangle, mirrored.
-    Matrix<3> A = s.b, B = s.b, out;
-    for (int i = 0; i < 3; ++i) A(i, i) -= a, B(i, i) -= b;
-    for (int i = 0; i < 3; ++i)
-      for (int j = i; j < 3; ++j) {
-        const double AB = A(i, 0) * B(0, j) + A(i, 1) * B(1, j) + A(i, 2) * B(2, j);
-        out(i, j) = out(j, i) = 0.5 * ((i == j ? 2 * s.log_sigma[0] : 0.0) + ab * A(i, j) + abc * AB);
-      }
-    return out;
-  }
+  Matrix<Dim> out;
+  log_left_stretches<Dim, 1>(&s, &out);
+  return out;
 }
 
 }  // namespace suite::mpm2grid
