@@ -324,6 +324,57 @@ TYPED_TEST(DruckerPragerTest, ElasticStateIsUnchanged) {
   }
 }
 
+// project_all (four particles at a time, their spectra and strain tensors stage by stage)
+// gives each particle bit for bit what project() gives it alone: elastic, cone and apex returns,
+// a stored volume correction, a state whose closed-form spectrum is not accurate (3D), and the
+// identity the particle update fills its last batch with.
+TYPED_TEST(DruckerPragerTest, ProjectAllEqualsProjectOneByOne) {
+  constexpr int Dim = TypeParam::value;
+  std::mt19937 rng(23);
+  const HenckyDruckerPrager m = sand(kCohesion);
+  std::vector<Matrix<Dim>> F;
+  std::vector<double> log_jp, saturation;
+  const auto add = [&](const Matrix<Dim>& f, double jp, double s) {
+    F.push_back(f), log_jp.push_back(jp), saturation.push_back(s);
+  };
+  add(with_strain<Dim>(strain<Dim>(-0.01, 1e-3), rng), 0.0, 0.0);   // elastic
+  add(with_strain<Dim>(strain<Dim>(-0.01, 0.2), rng), 0.0, 0.5);    // cone
+  add(with_strain<Dim>(strain<Dim>(0.05, 0.0), rng), 0.0, 1.0);     // apex
+  add(with_strain<Dim>(strain<Dim>(-0.01, 1e-3), rng), 0.02, 0.3);  // elastic with a shift
+  add(Matrix<Dim>::Identity(), 0.0, 0.0);
+  if constexpr (Dim == 3) add(random_rotation<3>(rng) * Vector<3>(3.0, 0.015, 0.01).asDiagonal(), 0.0, 0.0);
+  // Then random states: every other one compressed by 1% with a shear under 1e-4 (elastic),
+  // the rest with strains up to 0.03 and 0.09 (mostly plastic).
+  std::uniform_real_distribution<double> u(-0.03, 0.03);
+  while (F.size() % 4 != 0 || F.size() < 16) {
+    const bool small = F.size() % 2 == 0;
+    Matrix<Dim> f = (small ? 0.99 : 1.0) * Matrix<Dim>::Identity();
+    for (int i = 0; i < Dim; ++i)
+      for (int j = 0; j < Dim; ++j) f(i, j) += u(rng) * (small ? 3e-3 : i == j ? 1.0 : 3.0);
+    add(f, F.size() % 3 == 0 ? u(rng) : 0.0, 0.5 + 10 * u(rng));
+  }
+  int kinds[3] = {0, 0, 0};
+  for (std::size_t first = 0; first < F.size(); first += 4) {
+    ReturnResult<Dim> batch[4];
+    m.template project_all<Dim, 4>(&F[first], &log_jp[first], &saturation[first], batch);
+    for (std::size_t n = 0; n < 4; ++n) {
+      const ReturnResult<Dim> alone = m.template project<Dim>(F[first + n], log_jp[first + n], saturation[first + n]);
+      const ReturnResult<Dim>& b = batch[n];
+      SCOPED_TRACE(first + n);
+      EXPECT_TRUE(b.F == alone.F);
+      EXPECT_TRUE(b.stress == alone.stress);
+      EXPECT_EQ(b.log_jp, alone.log_jp);
+      EXPECT_EQ(b.kind, alone.kind);
+      EXPECT_EQ(b.plastic_strain, alone.plastic_strain);
+      EXPECT_EQ(b.has_stress, alone.has_stress);
+      ++kinds[static_cast<int>(alone.kind)];
+    }
+  }
+  EXPECT_GT(kinds[static_cast<int>(ReturnCase::elastic)], 4);
+  EXPECT_GT(kinds[static_cast<int>(ReturnCase::cone)], 0);
+  EXPECT_GT(kinds[static_cast<int>(ReturnCase::apex)], 0);
+}
+
 TYPED_TEST(DruckerPragerTest, ShearFarOutsideReturnsExactlyOntoTheCone) {
   constexpr int Dim = TypeParam::value;
   std::mt19937 rng(17);

@@ -293,6 +293,18 @@ TYPED_TEST(Transfer, TiledTransfersEqualTheNodeByNodeSums) {
   std::vector<double> sampled;
   const auto x = P.x;
   grid_to_particles(P, grid, nodes, grad_v, &node_pressure, &sampled);
+  // The water's G2P samples only the divergence (one gradient component per velocity component):
+  // the same velocities and C, and the full gradient's trace.
+  Particles<Dim> W = P;
+  W.x = x;
+  std::vector<double> divergence(P.size());
+  grid_to_particles_each<VelocityGradient::divergence>(W, grid, nodes, nullptr, nullptr, nullptr,
+                                                       [&](std::size_t p, double div) { divergence[p] = div; });
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    ASSERT_TRUE(W.v[p] == P.v[p]);
+    ASSERT_TRUE(W.C[p] == P.C[p]);
+    ASSERT_NEAR(divergence[p], grad_v[p].trace(), kRoundOff * 2 / h);
+  }
   std::array<long, BlockGrid<Dim>::kNodes> slots;
   for (std::size_t p = 0; p < P.size(); ++p) {
     const Stencil<Dim> st(x[p], h);
