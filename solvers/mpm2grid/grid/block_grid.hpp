@@ -161,7 +161,9 @@ class BlockGrid {
   const Index<Dim>& block_coord(std::size_t b) const { return coords_[b]; }
 
  private:
-  static int floor_div(int i) { return i >= 0 ? i / kSide : -((-i + kSide - 1) / kSide); }
+  // floor(i / kSide): an arithmetic shift (C++20 defines >> of a negative value as one).
+  static_assert(kSide == 4, "floor_div shifts by log2(kSide)");
+  static int floor_div(int i) { return i >> 2; }
   static int local(const Index<Dim>& node) {
     int l = 0, stride = 1;
     for (int d = 0; d < Dim; ++d) {

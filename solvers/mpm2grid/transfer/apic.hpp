@@ -55,13 +55,16 @@ void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, std::ve
         group = Grid::key(g);
         around.fill(-1);
       }
-      for (int corner = 0; corner < Grid::kStencilBlocks; ++corner) {  // as BlockGrid::touch()
-        Index<Dim> node = base;
-        for (int d = 0; d < Dim; ++d) node[d] += ((corner >> d) & 1) * 3;
-        const Index<Dim> b = Grid::block_holding(node);
-        int offset = 0;
-        for (int d = 0; d < Dim; ++d) offset |= (b[d] - g[d]) << d;
-        if (around[static_cast<std::size_t>(offset)] < 0) around[static_cast<std::size_t>(offset)] = grid.activate(b);
+      // The stencil reaches the next block along the axes where its last node base + 3 lies
+      // there; the blocks g + corner for the corners within those axes, in ascending corner
+      // order (as BlockGrid::touch()).
+      int reach = 0;
+      for (int d = 0; d < Dim; ++d) reach |= (base[d] + 3 - g[d] * Grid::kSide >= Grid::kSide) << d;
+      for (int corner = 0; corner < Grid::kStencilBlocks; ++corner) {
+        if ((corner & ~reach) != 0 || around[static_cast<std::size_t>(corner)] >= 0) continue;
+        Index<Dim> b = g;
+        for (int d = 0; d < Dim; ++d) b[d] += (corner >> d) & 1;
+        around[static_cast<std::size_t>(corner)] = grid.activate(b);
       }
       first = around[0];
       previous = base;
