@@ -52,9 +52,10 @@ struct StretchSpectrum {
 template <int Dim, int N>
 void stretch_spectra(const Matrix<Dim>* F, StretchSpectrum<Dim>* s) {
   static_assert(Dim == 2 || Dim == 3, "material models are written for 2 or 3 dimensions");
-  // top: the largest eigenvalue; middle: in 3D the middle one. 3D: m = tr(b) / 3, the
-  // deviator's p^2 and p, the cosine's argument r and the angle phi.
-  double det[N], top[N], middle[N], m[N], p[N], r[N];
+  // top: the largest eigenvalue; middle: in 3D the middle one. m = tr(b) / Dim; p: in 3D the
+  // deviator's p (first its square), in 2D the radius of the eigenvalues about m (first its
+  // square); 3D: det(b - m I) and the angle phi.
+  double det[N], top[N], middle[N], m[N], p[N], det_dev[N], phi[N];
   for (int n = 0; n < N; ++n) {
     // b = F F^T, exactly symmetric: the upper triangle's row products, mirrored. Here and below
     // scalar code on the symmetric entries (the 3D step 1.06x faster than with Eigen's products,
@@ -70,14 +71,14 @@ void stretch_spectra(const Matrix<Dim>* F, StretchSpectrum<Dim>* s) {
     if constexpr (Dim == 2) {
       const double e = 0.5 * (b(0, 0) - b(1, 1));
       m[n] = 0.5 * (b(0, 0) + b(1, 1));
-      p[n] = e * e + b(0, 1) * b(0, 1);  // squared here
+      p[n] = e * e + b(0, 1) * b(0, 1);
     } else {
       m[n] = (b(0, 0) + b(1, 1) + b(2, 2)) * (1.0 / 3);
       // The deviator b - m I: its diagonal d, its off-diagonal entries those of b.
       const double d0 = b(0, 0) - m[n], d1 = b(1, 1) - m[n], d2 = b(2, 2) - m[n];
       const double o01 = b(0, 1), o02 = b(0, 2), o12 = b(1, 2);
-      p[n] = (d0 * d0 + d1 * d1 + d2 * d2 + 2 * (o01 * o01 + o02 * o02 + o12 * o12)) * (1.0 / 6);       // p^2
-      r[n] = d0 * (d1 * d2 - o12 * o12) - o01 * (o01 * d2 - o12 * o02) + o02 * (o01 * o12 - d1 * o02);  // det
+      p[n] = (d0 * d0 + d1 * d1 + d2 * d2 + 2 * (o01 * o01 + o02 * o02 + o12 * o12)) * (1.0 / 6);
+      det_dev[n] = d0 * (d1 * d2 - o12 * o12) - o01 * (o01 * d2 - o12 * o02) + o02 * (o01 * o12 - d1 * o02);
     }
   }
   for (int n = 0; n < N; ++n) p[n] = std::sqrt(p[n]);
@@ -85,14 +86,14 @@ void stretch_spectra(const Matrix<Dim>* F, StretchSpectrum<Dim>* s) {
     for (int n = 0; n < N; ++n) top[n] = m[n] + p[n];
   } else {
     for (int n = 0; n < N; ++n)
-      r[n] = p[n] > 0 ? std::acos(std::clamp(r[n] / (2 * p[n] * p[n] * p[n]), -1.0, 1.0)) / 3 : 0.0;
+      phi[n] = p[n] > 0 ? std::acos(std::clamp(det_dev[n] / (2 * p[n] * p[n] * p[n]), -1.0, 1.0)) / 3 : 0.0;
     for (int n = 0; n < N; ++n) {
       double bottom = m[n];
       top[n] = m[n];
       if (p[n] > 0) {
         // cos(phi + 2 pi / 3) = -(cos(phi) + sqrt(3) sin(phi)) / 2: one sincos for both, and a
         // sum of non-negative terms (phi in [0, pi / 3]).
-        const double cos_phi = std::cos(r[n]), sin_phi = std::sin(r[n]);
+        const double cos_phi = std::cos(phi[n]), sin_phi = std::sin(phi[n]);
         top[n] = m[n] + 2 * p[n] * cos_phi;
         bottom = m[n] - p[n] * (cos_phi + std::sqrt(3.0) * sin_phi);
       }
