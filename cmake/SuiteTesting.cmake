@@ -8,13 +8,9 @@
 # suite_mpiexec_command(<out-var> <ranks>) gives the launcher prefix used for MPI tests, so
 #   regression tests of executables start them exactly like the MPI unit tests.
 
-# Reference data (published tables, Martin & Moyce, the wheat-grain images) lives beside the
-# repository in ../shared/reference; tests read it from there.
-set(SUITE_SHARED_DIR "${PROJECT_SOURCE_DIR}/../shared" CACHE PATH "the project's shared/ folder (reference data)")
-if(SUITE_BUILD_TESTS AND NOT EXISTS "${SUITE_SHARED_DIR}/reference")
-  message(WARNING "No reference data at ${SUITE_SHARED_DIR}/reference: tests that compare with published "
-                  "data will fail. Pass -DSUITE_SHARED_DIR=<the shared/ folder>.")
-endif()
+# Reference data (published tables, Martin & Moyce, the wheat-grain images) is part of the
+# repository: data/, its sources and terms in data/README.md.
+set(SUITE_DATA_DIR "${PROJECT_SOURCE_DIR}/data")
 
 set(SUITE_MPIEXEC_FLAGS --oversubscribe)
 execute_process(COMMAND id -u OUTPUT_VARIABLE SUITE_UID OUTPUT_STRIP_TRAILING_WHITESPACE)
@@ -41,7 +37,7 @@ function(suite_add_gtest)
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE suite_gtest_main ${T_LIBS} suite_warnings)
   target_compile_definitions(${T_NAME} PRIVATE
-    SUITE_SOURCE_DIR="${PROJECT_SOURCE_DIR}" SUITE_SHARED_DIR="${SUITE_SHARED_DIR}")
+    SUITE_SOURCE_DIR="${PROJECT_SOURCE_DIR}" SUITE_DATA_DIR="${SUITE_DATA_DIR}")
   if(NOT T_RANKS)
     add_test(NAME ${T_NAME} COMMAND ${T_NAME})
     set_tests_properties(${T_NAME} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT}

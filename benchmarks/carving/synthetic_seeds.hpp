@@ -49,7 +49,7 @@ SyntheticSeed uncreased_grain(int views, double turn_rad);
 SyntheticSeed every_nth_view(const SyntheticSeed& seed, int n);
 
 // Visual-hull volume of a sphere of radius r from n equally spaced parallel views over a full
-// turn (spec/carving.md): a stack of regular polygons with n sides (n even; 2n for odd n), so
+// turn (docs/methods/carving.md): a stack of regular polygons with n sides (n even; 2n for odd n), so
 // V = (4 sides / 3) tan(pi / sides) r^3.
 double analytic_sphere_hull_mm3(int views, double radius_mm);
 

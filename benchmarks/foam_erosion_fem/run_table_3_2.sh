@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The dissertation's Table 3.2 runtime study (reference/dissertation_table_3_2_openfoam_runtimes.csv)
+# The dissertation's Table 3.2 runtime study (data/dissertation_table_3_2_openfoam_runtimes.csv)
 # next to the same case with adaptive time steps: 4 s of overtopping flow over the Table 3.4 dam
 # (table_3_2_dam.yaml: the flows, the dam and why), inlet laws f1 (sine) and f2 (constant), fixed
 # deltaT from 1e-3 down to 1e-4 s, on 1..N ranks, written every 0.05 s as there. Per run: flow
@@ -50,5 +50,5 @@ for ((r = 1; r <= repeats; r++)); do
     done
   done
 done
-/usr/bin/python3 "$here/plot_table_3_2.py" "$csv" "$root/../shared/reference/dissertation_table_3_2_openfoam_runtimes.csv" \
+/usr/bin/python3 "$here/plot_table_3_2.py" "$csv" "$root/data/dissertation_table_3_2_openfoam_runtimes.csv" \
   "$out/table_3_2.png" | tee "$out/table_3_2.md"

@@ -9,12 +9,12 @@
 # front started later by the best offset dT (the release time the experiment did not record). Resolutions run in turn,
 # REPEATS times; the chart and table (plot_martin_moyce.py) take medians of the times.
 #   benchmarks/mpm2grid/run_martin_moyce.sh [MPM2GRID]     (about 2 min on 2 idle cores; CELLS="8 16 32 64" about 12 min)
-#   env: REPEATS (3), CELLS ("8 16 32"), REFERENCE (../shared/reference/martin_moyce_1952_surge_front.csv),
+#   env: REPEATS (3), CELLS ("8 16 32"), REFERENCE (data/martin_moyce_1952_surge_front.csv),
 #        and common.sh's MPM2GRID MPIEXEC OUT NICE KEEP_RUNS
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 repeats=${REPEATS:-3} cells_list=${CELLS:-8 16 32}
-reference=${REFERENCE:-$root/../shared/reference/martin_moyce_1952_surge_front.csv}
+reference=${REFERENCE:-$root/data/martin_moyce_1952_surge_front.csv}
 [ -f "$reference" ] || { echo "no reference data at $reference (set REFERENCE)" >&2; exit 2; }
 work_dir martin_moyce
 csv=$out/martin_moyce.csv

@@ -27,7 +27,7 @@
 #include "core/mpi/comm.hpp"
 #include "core/mpi/environment.hpp"
 #include "core/run/build_info.hpp"
-#include "solvers/breach/io/run_breach.hpp"
+#include "solvers/breach/run/run_breach.hpp"
 #include "solvers/breach/model/scene.hpp"
 #include "solvers/breach/model/simulate.hpp"
 #include "studies/run/study.hpp"

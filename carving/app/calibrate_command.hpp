@@ -1,5 +1,5 @@
 #pragma once
-// `seedcarve calibrate`: the rig's numbers from calibration photographs (spec/carving.md,
+// `seedcarve calibrate`: the rig's numbers from calibration photographs (docs/methods/carving.md,
 // "Calibration"), written as calibration.json and as camera.yaml lines to paste into a profile.
 //   ball IMAGES --diameter MM [--focal PX]     px/mm at the ball and the camera distance
 //   chessboard IMAGES --corners CxR --square MM focal length, principal point, distortion

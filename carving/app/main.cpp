@@ -1,4 +1,4 @@
-// seedcarve: seed volume, size and density from images (spec/carving.md, issue 4).
+// seedcarve: seed volume, size and density from images (docs/methods/carving.md, issue 4).
 #include <fmt/format.h>
 
 #include <chrono>

@@ -1,5 +1,5 @@
 #pragma once
-// A seed batch's manifest (spec/carving.md, "Batch"): a CSV table, one row per seed.
+// A seed batch's manifest (docs/methods/carving.md, "Batch"): a CSV table, one row per seed.
 //
 //   id,images,method,weight_mg,profile
 //   W-001,seeds/W-001,carving,38.2,wheat_turntable.yaml

@@ -1,5 +1,5 @@
 #pragma once
-// A seed batch's results table (spec/carving.md, "Batch"): one CSV row per seed, appended and
+// A seed batch's results table (docs/methods/carving.md, "Batch"): one CSV row per seed, appended and
 // flushed as each seed finishes, so a killed batch keeps every finished seed and a rerun skips
 // them. Lengths in mm, volume in mm^3, surface in mm^2, density in mg/mm^3, wall time in s: the
 // header says so. A failed seed has status "failed" and the reason in `message`.

@@ -1,5 +1,5 @@
 #pragma once
-// A seed batch (spec/carving.md, "Batch"): every seed of a manifest measured with its profile,
+// A seed batch (docs/methods/carving.md, "Batch"): every seed of a manifest measured with its profile,
 // one results row per seed streamed to <out>/results.csv as it finishes.
 //
 // - One process measures the seeds in order. Under MPI, rank 0 hands seeds out one at a time to

@@ -1,5 +1,5 @@
 #pragma once
-// Scale calibration from a reference ball of known diameter (spec/carving.md, "Calibration"): the
+// Scale calibration from a reference ball of known diameter (docs/methods/carving.md, "Calibration"): the
 // ball's silhouette in one image gives its centre and radius in pixels, hence pixels per mm at the
 // ball; with the focal length in pixels also the distance from the camera centre to the ball.
 //

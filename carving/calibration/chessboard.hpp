@@ -1,5 +1,5 @@
 #pragma once
-// Camera intrinsics from photographs of a flat chessboard (spec/carving.md, "OpenCV chessboard
+// Camera intrinsics from photographs of a flat chessboard (docs/methods/carving.md, "OpenCV chessboard
 // calibration for K when given"): the inner corners are found in every image
 // (cv::findChessboardCorners), refined to sub-pixel accuracy (cv::cornerSubPix) and handed with the
 // board's known geometry to cv::calibrateCamera (Zhang's method with lens distortion).

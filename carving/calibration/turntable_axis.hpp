@@ -1,5 +1,5 @@
 #pragma once
-// Turntable calibration from the silhouettes themselves (spec/carving.md, "Calibration"), and moving
+// Turntable calibration from the silhouettes themselves (docs/methods/carving.md, "Calibration"), and moving
 // views calibrated for crops of the camera frames into the frames.
 //
 // Axis column. Under a parallel view the silhouette at angle theta + pi is the mirror image, about

@@ -1,10 +1,10 @@
 #pragma once
-// Camera models for seed imaging (spec/carving.md).
+// Camera models for seed imaging (docs/methods/carving.md).
 //
 // A view maps world points (mm) to pixel coordinates with a 3x4 matrix P: (u, v, w) = P (X, 1),
 // pixel (u/w, v/w). u runs along image columns (x, to the right), v along rows (y, down), and a
 // pixel's centre has integer coordinates: pixel (x, y) covers [x - 0.5, x + 0.5) x [y - 0.5, y + 0.5).
-// This is the convention of the Kansas State carving program (reference/kstate_wheat_36view).
+// This is the convention of the Kansas State carving program (data/kstate_wheat_36view).
 //
 // Turntable: the seed turns about the world y axis (image "down" at angle 0); view i sees the
 // world rotated by R_y(angle_i) and moved `distance` along the optical axis: P = K [R_y | (0,0,d)].

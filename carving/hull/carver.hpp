@@ -1,5 +1,5 @@
 #pragma once
-// Shape from silhouette (spec/carving.md): a voxel is kept iff its centre, projected by every
+// Shape from silhouette (docs/methods/carving.md): a voxel is kept iff its centre, projected by every
 // view and rounded to the nearest pixel, lands on a seed pixel of that view's mask.
 //
 // carve() is hierarchical: it tests whole cells of voxels against each view at once. The

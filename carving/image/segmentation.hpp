@@ -1,5 +1,5 @@
 #pragma once
-// Seed segmentation of a colour photograph (spec/carving.md, two-view method, first step):
+// Seed segmentation of a colour photograph (docs/methods/carving.md, two-view method, first step):
 // BGR -> HSV, a fixed HSV range or an automatic (Otsu) threshold on one channel, morphological
 // opening (removes specks) and closing (fills pinholes), external contours, and the largest contour
 // whose area lies in [min_area, max_area] px, filled, as the seed's mask. Also the image reading

@@ -1,6 +1,6 @@
 #pragma once
 // Reader for `carve_input.dat`, the binary input of the Kansas State multithreaded carving
-// program (reference/kstate_wheat_36view/README.md), little-endian:
+// program (data/kstate_wheat_36view/README.md), little-endian:
 //   3 x int32 grid size; nx*ny*nz bytes of initial occupancy; int32 view count m; then per view
 //   12 x float64 P (3 x 4, column-major), 2 x int32 mask width and height, width*height mask
 //   bytes stored x-major (index x * height + y); finally 3 x float64 size of the voxel box (mm).

@@ -1,5 +1,5 @@
 #pragma once
-// One seed's size from its silhouettes (spec/carving.md, multi-view volume carving), modelling no
+// One seed's size from its silhouettes (docs/methods/carving.md, multi-view volume carving), modelling no
 // more space than the seed fills:
 //   1. a coarse carve of the region every camera sees finds the seed's bounding box;
 //   2. the box is carved at `resolution` voxels along its longest side (hierarchically, so the

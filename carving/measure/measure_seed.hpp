@@ -1,5 +1,5 @@
 #pragma once
-// One seed from its images to its results row (spec/carving.md): read and segment every image,
+// One seed from its images to its results row (docs/methods/carving.md): read and segment every image,
 // then either carve the silhouettes (multi-view) or slice the top and side views (two-view),
 // and write what a person needs to check the result into the seed's folder:
 //   overlays.png  every view with the chosen contour (carving) or the slices (two-view)

@@ -1,5 +1,5 @@
 #pragma once
-// A calibration profile: how one kind of seed on one rig is imaged and measured (spec/carving.md).
+// A calibration profile: how one kind of seed on one rig is imaged and measured (docs/methods/carving.md).
 // A YAML file, e.g. examples/profiles/wheat_turntable.yaml:
 //
 //   method: carving                 # carving (multi-view) | slicing (top + side view)

@@ -1,6 +1,6 @@
 #pragma once
 // Marching cubes: the triangle mesh of an iso-surface of a scalar field sampled on a regular grid,
-// used to turn a carved seed's occupancy grid into its surface (spec/carving.md).
+// used to turn a carved seed's occupancy grid into its surface (docs/methods/carving.md).
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>

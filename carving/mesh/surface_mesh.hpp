@@ -1,5 +1,5 @@
 #pragma once
-// A triangle mesh of a seed's surface (spec/carving.md): its area, the volume it encloses, a check
+// A triangle mesh of a seed's surface (docs/methods/carving.md): its area, the volume it encloses, a check
 // that it is closed, and binary PLY output.
 //
 // Units: vertex coordinates in mm, so areas are in mm^2 and volumes in mm^3. Triangles hold indices

@@ -1,5 +1,5 @@
 #pragma once
-// `seedcarve render`: synthetic ground truth (spec/carving.md). A YAML scene places an analytic
+// `seedcarve render`: synthetic ground truth (docs/methods/carving.md). A YAML scene places an analytic
 // seed on a turntable and photographs it from every view through the same camera model the
 // measurement uses; out come the colour images, the exact masks, the true volume and a profile
 // that measures the images with the same calibration.

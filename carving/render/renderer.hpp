@@ -1,6 +1,6 @@
 #pragma once
 // A ray caster that turns an analytic shape and a calibrated view into a synthetic photograph and
-// its exact silhouette mask (spec/carving.md, "Synthetic ground truth").
+// its exact silhouette mask (docs/methods/carving.md, "Synthetic ground truth").
 //
 // Rays are back-projected from the 3x4 matrix P alone:
 //   pinhole (P's left 3x3 block M invertible): camera centre C = -M^-1 p4 (the null vector of P),
@@ -15,7 +15,7 @@
 // through its centre hits the shape: exact, whatever the colour options. The colour image is a
 // dark blue background and a wheat-brown seed with Lambert shading (colour = albedo x (ambient +
 // (1 - ambient) max(0, n . l))), like the K-State photographs
-// (reference/kstate_wheat_36view: background about BGR (35, 15, 10), lit seed about
+// (data/kstate_wheat_36view: background about BGR (35, 15, 10), lit seed about
 // BGR (130, 220, 255), shaded seed about BGR (70, 135, 180)).
 #include <Eigen/Core>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Analytic seed shapes with known volume, the synthetic ground truth of spec/carving.md: sphere,
+// Analytic seed shapes with known volume, the synthetic ground truth of docs/methods/carving.md: sphere,
 // ellipsoid, superellipsoid and a creased grain (an ellipsoid with a groove along its long axis).
 //
 // Every shape has a pose: a rotation R (body axes to world axes) and a centre c, both in mm, so a

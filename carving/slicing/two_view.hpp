@@ -1,5 +1,5 @@
 #pragma once
-// The two-view slicing model of spec/carving.md: a seed's volume from a top-view and a side-view
+// The two-view slicing model of docs/methods/carving.md: a seed's volume from a top-view and a side-view
 // silhouette, as a stack of N elliptic slices.
 //
 // Conventions:

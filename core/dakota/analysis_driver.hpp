@@ -1,5 +1,5 @@
 #pragma once
-// A suite executable as a Dakota analysis driver (spec/studies.md):
+// A suite executable as a Dakota analysis driver (docs/methods/studies.md):
 //
 //   <program> [scene.yaml] [key.path=value ...] --dakota params.in results.out
 //

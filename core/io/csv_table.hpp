@@ -1,7 +1,7 @@
 #pragma once
 // A table read from a CSV file: '#' comment lines, one header row, then rows of the same
 // width; fields may be double-quoted (with "" for a quote inside). This is the format of the
-// reference data in ../shared/reference/, of seed manifests and of results tables. Cells are
+// reference data in data/, of seed manifests and of results tables. Cells are
 // kept as text; number() converts with an InputError that names the file, line and column.
 // Not collective.
 #include <filesystem>

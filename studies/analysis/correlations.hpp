@@ -1,6 +1,6 @@
 #pragma once
 // Dakota's four correlation matrices and standardized regression coefficients over the
-// evaluations of a study (spec/studies.md, "Analysis and output"). Computed with OpenTURNS 1.20
+// evaluations of a study (docs/methods/studies.md, "Analysis and output"). Computed with OpenTURNS 1.20
 // (OT::Sample::computePearsonCorrelation / computeSpearmanCorrelation, OT::CorrelationAnalysis::
 // computePCC / computePRCC / computeSRC); OpenTURNS stays out of this header.
 //

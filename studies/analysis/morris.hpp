@@ -1,5 +1,5 @@
 #pragma once
-// Morris elementary effects for screening (spec/studies.md, method `morris`).
+// Morris elementary effects for screening (docs/methods/studies.md, method `morris`).
 //
 // References: M. D. Morris, "Factorial sampling plans for preliminary computational
 // experiments", Technometrics 33(2), 161-174, 1991 (trajectories, mu, sigma); F. Campolongo,

@@ -1,5 +1,5 @@
 #pragma once
-// analysis.json of a study (spec/studies.md, "Analysis and output"): for every response its
+// analysis.json of a study (docs/methods/studies.md, "Analysis and output"): for every response its
 // statistics; over the successful evaluations Dakota's four correlation matrices and the
 // standardized regression coefficients with R^2; Sobol indices with bootstrap intervals for a
 // sobol_indices design; Morris mu, mu* and sigma for a morris design. Failed evaluations are

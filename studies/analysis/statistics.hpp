@@ -1,5 +1,5 @@
 #pragma once
-// Summary statistics of one response over the evaluations of a study (spec/studies.md,
+// Summary statistics of one response over the evaluations of a study (docs/methods/studies.md,
 // "Analysis and output"). NaN entries are failed evaluations: they are skipped and counted.
 //
 //   mean, std   sample mean and sample standard deviation (denominator count - 1, as Dakota

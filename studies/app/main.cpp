@@ -1,4 +1,4 @@
-// study: parameter studies over the suite's models (spec/studies.md, issue 6).
+// study: parameter studies over the suite's models (docs/methods/studies.md, issue 6).
 //   study run SPEC.yaml [key.path=value ...] [--out DIR] [--log-level LEVEL]
 //   study resume DIR [--retry-failed] [--log-level LEVEL]
 //   study analyze DIR

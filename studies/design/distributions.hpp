@@ -1,5 +1,5 @@
 #pragma once
-// Probability distributions of uncertain study variables (spec/studies.md), read from YAML and
+// Probability distributions of uncertain study variables (docs/methods/studies.md), read from YAML and
 // handed to OpenTURNS for sampling. Every distribution is given in the parameters of the variable
 // itself (never of its logarithm), with these keys and these OpenTURNS classes:
 //

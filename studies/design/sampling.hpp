@@ -1,5 +1,5 @@
 #pragma once
-// Random and quasi-random designs and Sobol' sensitivity indices (spec/studies.md, methods
+// Random and quasi-random designs and Sobol' sensitivity indices (docs/methods/studies.md, methods
 // `sampling` and `sobol_indices`), built on OpenTURNS 1.20 (the Debian package):
 //
 //   lhs             OT::LHSExperiment on the independent OT::ComposedDistribution of the

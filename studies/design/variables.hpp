@@ -1,5 +1,5 @@
 #pragma once
-// The variables of a study (spec/studies.md): a name, bounds, an initial point (the centre
+// The variables of a study (docs/methods/studies.md): a name, bounds, an initial point (the centre
 // of vector and centered studies; default the middle of the bounds) and, for sampling designs,
 // a distribution (default uniform over the bounds; see distributions.hpp for the types).
 //

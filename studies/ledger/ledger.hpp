@@ -1,5 +1,5 @@
 #pragma once
-// The append-only record of a study's evaluations (spec/studies.md, "Reliability"): one JSON
+// The append-only record of a study's evaluations (docs/methods/studies.md, "Reliability"): one JSON
 // object per line in <study>/ledger.jsonl, written and flushed to disk as each evaluation ends,
 // so a killed study loses at most the evaluations that were running.
 //

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "core/errors.hpp"
-#include "solvers/breach/io/run_breach.hpp"
+#include "solvers/breach/run/run_breach.hpp"
 #include "solvers/breach/model/simulate.hpp"
 
 namespace suite::studies {

@@ -1,5 +1,5 @@
 #pragma once
-// Any program as a study's model, the way Dakota runs analysis drivers (spec/studies.md):
+// Any program as a study's model, the way Dakota runs analysis drivers (docs/methods/studies.md):
 // each evaluation gets a tagged work directory with the rendered input files and a Dakota
 // parameters file, the program runs there (own process group, captured output, time limit,
 // retries), and its responses come from a Dakota results file or from a summary.json.

@@ -1,5 +1,5 @@
 #pragma once
-// Study evaluations spread over MPI ranks (spec/studies.md, "Execution"): rank 0 hands out
+// Study evaluations spread over MPI ranks (docs/methods/studies.md, "Execution"): rank 0 hands out
 // evaluation ids one at a time as ranks 1..N-1 ask for work (so long and short evaluations
 // balance themselves) and is the only rank that writes the ledger; each worker evaluates and
 // sends back its outcome. COLLECTIVE over `comm` (size >= 2).

@@ -1,5 +1,5 @@
 #pragma once
-// A study from its specification to its table (spec/studies.md):
+// A study from its specification to its table (docs/methods/studies.md):
 //
 //   variables: [...]            design/variables.hpp
 //   method:    {type: ...}      design/parameter_studies.hpp

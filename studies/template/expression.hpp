@@ -1,6 +1,6 @@
 #pragma once
 // Arithmetic expressions with Python's syntax and semantics, evaluated by muParser
-// (spec/studies.md, "Templates").
+// (docs/methods/studies.md, "Templates").
 //
 //   + - * / // % **, parentheses, numbers such as 2, 2.5, .5, 1e-3
 //   sin cos tan asin acos atan sinh cosh tanh exp log log10 sqrt abs floor ceil min max pow

@@ -1,5 +1,5 @@
 #pragma once
-// Input-file templates (spec/studies.md, "Templates"):
+// Input-file templates (docs/methods/studies.md, "Templates"):
 //
 //   IEMODEL 2 120 {Kd} {Us} 0.2
 //   0 {4*(2**Scale)}

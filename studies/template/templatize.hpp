@@ -1,6 +1,6 @@
 #pragma once
 // `study templatize`: turns an input file engineers already have into a template, so it need not
-// be rewritten by hand (spec/studies.md, "Templates"). Each variable names the place of one
+// be rewritten by hand (docs/methods/studies.md, "Templates"). Each variable names the place of one
 // number in the file:
 //   LINE:FIELD   the FIELD-th whitespace-separated field of line LINE (1-based), for
 //                fixed-column text such as a WinDAM C input file; its spacing is kept

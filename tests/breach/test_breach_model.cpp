@@ -1,4 +1,4 @@
-// The breach model end to end (spec/breach.md, issue 5): reservoir mass balance, erosion against
+// The breach model end to end (docs/methods/breach.md, issue 5): reservoir mass balance, erosion against
 // closed forms, time-step independence, physical trends, the Froehlich regressions, bad input.
 #include <gtest/gtest.h>
 
@@ -248,7 +248,7 @@ TEST(BreachModel, PeakOutflowTrends) {
   auto rising = [](const std::vector<double>& p) {
     for (std::size_t i = 1; i < p.size(); ++i) EXPECT_GT(p[i], p[i - 1]) << "at " << i;
   };
-  // Rises with erodibility and with reservoir volume (the spec's and the dissertation's trends).
+  // Rises with erodibility and with reservoir volume (docs/methods/breach.md's and the dissertation's trends).
   rising(peaks("soil.erodibility", {"10 cm^3/(N s)", "20 cm^3/(N s)", "40 cm^3/(N s)", "80 cm^3/(N s)"}));
   rising(peaks("reservoir.storage.alpha", {"17361", "34722", "69444", "138888"}));
   // Falls as the critical stress rises.

@@ -1,4 +1,4 @@
-// The breach outflow law against critical-flow theory (spec/breach.md, Fread 1988).
+// The breach outflow law against critical-flow theory (docs/methods/breach.md, Fread 1988).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -24,7 +24,7 @@ namespace suite::carving {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-const std::filesystem::path kWheatDir = SUITE_SHARED_DIR "/reference/kstate_wheat_36view";
+const std::filesystem::path kWheatDir = SUITE_DATA_DIR "/kstate_wheat_36view";
 
 // ---------------------------------------------------------------------------------------------
 // Rendering helpers
@@ -67,7 +67,7 @@ Mask render_pinhole(const Ellipsoid& e, const View& view) {
   return Mask(view.width, view.height, std::move(px));
 }
 
-// A wheat-like ellipsoid (7.2 x 3.6 x 2.9 mm, spec/carving.md) tilted and placed off the axis.
+// A wheat-like ellipsoid (7.2 x 3.6 x 2.9 mm, docs/methods/carving.md) tilted and placed off the axis.
 Ellipsoid off_axis_grain() {
   const Eigen::Matrix3d Q =
       (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(0.15, Eigen::Vector3d::UnitZ()) *

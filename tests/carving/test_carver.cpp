@@ -13,7 +13,7 @@
 namespace suite::carving {
 namespace {
 
-const std::filesystem::path kWheat = SUITE_SHARED_DIR "/reference/kstate_wheat_36view/carve_input.dat";
+const std::filesystem::path kWheat = SUITE_DATA_DIR "/kstate_wheat_36view/carve_input.dat";
 
 // The silhouette of the ellipsoid x^T A x <= 1 seen by a parallel view: a pixel is seed when the
 // ray through its centre meets the ellipsoid, i.e. when the minimum of the quadric along the ray
@@ -91,7 +91,7 @@ TEST(Carver, RealWheatGrainConvergesOnFinerGrids) {
 
 // Visual hull of a sphere of radius r from N equally spaced parallel views about one axis: a
 // stack of regular N-gons (N even; 2N for odd N) circumscribing the sphere's circles, volume
-// (4N/3) tan(pi/N) r^3 (spec/carving.md).
+// (4N/3) tan(pi/N) r^3 (docs/methods/carving.md).
 double analytic_sphere_hull(int views, double r) {
   const int sides = views % 2 == 0 ? views : 2 * views;
   return 4.0 * sides / 3.0 * std::tan(std::numbers::pi / sides) * r * r * r;
@@ -115,7 +115,7 @@ TEST(Carver, SphereUnderParallelProjectionMatchesTheAnalyticHull) {
 
 TEST(Carver, SphereUnderCentralProjectionWithin0p3PercentOfItsVolume) {
   // Issue 4: 36 views, central projection, within 0.3% of the true volume. The hull's own bias
-  // is +0.09 to +0.12% at 10-50 radii (spec/carving.md); here the camera is at 25 radii.
+  // is +0.09 to +0.12% at 10-50 radii (docs/methods/carving.md); here the camera is at 25 radii.
   constexpr double kTolerance = 3e-3;
   const double r = 2.0, d = 50.0, f = 5000.0;
   Turntable rig{{f, 300, 300}, d, 36, 0.0, 2 * std::numbers::pi / 36, 600, 600};

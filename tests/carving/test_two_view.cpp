@@ -60,7 +60,7 @@ Pair wheat_masks(double top_scale, double side_scale, int width = 640, int heigh
 
 constexpr double kWheatVolume = 4.0 / 3.0 * pi * 3.6 * 1.8 * 1.45;
 
-// The target of the spec (below 3% on balls once N >= 50) tightened to the 1% asked of this model on
+// The target of docs/methods/carving.md (below 3% on balls once N >= 50) tightened to the 1% asked of this model on
 // clean silhouettes at 40 px/mm; the pixel error alone is about 1 px on 116-288 px (0.3-0.9%) per
 // extent and averages out over the slices' areas.
 constexpr double kVolumeTolerance = 0.01;

@@ -1,4 +1,4 @@
-// Reading CSV tables: the real reference data of ../shared/reference and the messages for
+// Reading CSV tables: the real reference data of data/ and the messages for
 // malformed files.
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@ namespace {
 using suite::io::CsvTable;
 using suite::testing::input_error_of;
 
-const std::filesystem::path kReference = std::filesystem::path(SUITE_SHARED_DIR) / "reference";
+const std::filesystem::path kReference = std::filesystem::path(SUITE_DATA_DIR);
 
 TEST(CsvTable, ReadsTheDissertationDamScenes) {
   const auto t = CsvTable::read(kReference / "dissertation_table_3_4_dam_scenes.csv");

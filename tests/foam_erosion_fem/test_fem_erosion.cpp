@@ -1,4 +1,4 @@
-// FEM erosion of the dam surface (spec/foam_erosion_fem.md step 6): closed forms on a flat bed
+// FEM erosion of the dam surface (docs/methods/foam_erosion_fem.md step 6): closed forms on a flat bed
 // and at corners, the eroded area against the time integral of the rate, the L2 projections,
 // the foundation clamp, the repose limiter's area balance, substepping and the area formula.
 #include <gtest/gtest.h>

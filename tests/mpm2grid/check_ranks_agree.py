@@ -1,4 +1,4 @@
-"""Two mpm2grid runs of one scene, on 1 and on 2 ranks, agree to round-off (spec/mpm2grid.md,
+"""Two mpm2grid runs of one scene, on 1 and on 2 ranks, agree to round-off (docs/methods/mpm2grid.md,
 "Decomposition and performance design"): every column of series.csv and every particle's
 position in the last particle file. The decomposition changes only the order in which P2G adds
 particles into a node (its own particles first, then the halo sum) and the order of the global

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The sand pile of scenes/sand_pile.yaml at two flank angles around the friction angle phi
-(spec/mpm2grid.md: the angle of repose close to the friction angle).
+(docs/methods/mpm2grid.md: the angle of repose close to the friction angle).
   - A flank 3 deg below phi stands: the eroded volume (soil that left the pile's section grown by
     half a particle spacing, summary.json) is exactly 0.
   - A flank 3 deg above phi slides: more than 1% of the pile leaves its section, and the final

@@ -1,4 +1,4 @@
-// Buoyancy and hydrostatics (spec/mpm2grid.md, "Buoyancy" and "Validation references"):
+// Buoyancy and hydrostatics (docs/methods/mpm2grid.md, "Buoyancy" and "Validation references"):
 // - a hydrostatic tank: water started at rest under its hydrostatic pressure keeps
 //   p = rho g (H - y). The particles' pressures are noisy (their J drifts apart by tens of percent
 //   of rho g H in a still tank: weakly compressible MPM's known checkerboard), so the measure is the

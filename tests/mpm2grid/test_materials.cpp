@@ -1,4 +1,4 @@
-// Constitutive models of mpm2grid (spec/mpm2grid.md, "Continuum model"): the rotation SVD,
+// Constitutive models of mpm2grid (docs/methods/mpm2grid.md, "Continuum model"): the rotation SVD,
 // Hencky elasticity, the Drucker-Prager return mapping with saturation-dependent cohesion and
 // volume correction, and the weakly compressible water. Every material test runs for Dim = 2
 // and Dim = 3.

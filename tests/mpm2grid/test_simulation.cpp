@@ -1,4 +1,4 @@
-// Whole steps of the two-species model against closed forms (spec/mpm2grid.md, "Validation
+// Whole steps of the two-species model against closed forms (docs/methods/mpm2grid.md, "Validation
 // references" and "Stability"): free fall, drag relaxation with both drag schemes and total
 // momentum, and the explicit drag's divergence above dt = 2 tau_d while the implicit solve stays
 // bounded at 100 times that step.

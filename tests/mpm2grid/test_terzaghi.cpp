@@ -1,4 +1,4 @@
-// Terzaghi's one-dimensional consolidation (spec/mpm2grid.md, "Validation references") through
+// Terzaghi's one-dimensional consolidation (docs/methods/mpm2grid.md, "Validation references") through
 // the scene scenes/terzaghi.yaml and whole steps of the model with mixture: true: a saturated
 // column of height H on an impermeable floor, drained at its top, loaded there by a surcharge
 // sigma that grows linearly over t_r.

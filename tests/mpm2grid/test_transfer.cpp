@@ -1,4 +1,4 @@
-// Cubic B-spline weights, the sparse block grid and APIC transfers (spec/mpm2grid.md,
+// Cubic B-spline weights, the sparse block grid and APIC transfers (docs/methods/mpm2grid.md,
 // "Validation references"): partition of unity, linear reproduction, gradient consistency, and
 // conservation of mass, linear and angular momentum by P2G and by a G2P -> P2G round trip.
 // Tolerances: these identities hold exactly in real arithmetic; sums of O(100) terms of O(1)

@@ -1,4 +1,4 @@
-// The vibrating bar (spec/mpm2grid.md, "Validation references"): an elastic bar of length L,
+// The vibrating bar (docs/methods/mpm2grid.md, "Validation references"): an elastic bar of length L,
 // fixed at x = 0 and free at x = L, started in its first mode v(x, 0) = v0 sin(pi x / (2 L)),
 // keeps its centre-of-mass velocity v_cm(t) = (2 / pi) v0 cos(omega t), omega = (pi / (2 L)) c.
 // In 2D the bar fills a strip between two slip walls, with Poisson's ratio 0 so that the 1D wave

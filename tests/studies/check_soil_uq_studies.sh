@@ -9,7 +9,7 @@
 #     into a breach of minutes. So kd has the largest rank correlation and regression
 #     coefficient, and its total Sobol index is above 0.7 (about 1 at N = 2000; the intervals
 #     at N = 500 are about +-0.17) with its interval above every other input's. The
-#     dissertation found the same trend ("peak outflow rises strongly with kd", spec/breach.md);
+#     dissertation found the same trend ("peak outflow rises strongly with kd", docs/methods/breach.md);
 #   - peak outflow falls with tau_c once kd is accounted for (partial rank correlation < 0), the
 #     trend tests/breach checks on the model itself;
 #   - breach initiation comes later for stronger soils: s_u has the largest rank correlation

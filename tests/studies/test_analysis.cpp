@@ -1,5 +1,5 @@
 // Tests of studies/analysis: response statistics, Dakota's correlation matrices, standardized
-// regression, Morris elementary effects (spec/studies.md, "Analysis and output" and
+// regression, Morris elementary effects (docs/methods/studies.md, "Analysis and output" and
 // "Validation references"). Closed forms on linear models, with OpenTURNS and Eigen as oracles.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Distributions, random and quasi-random designs and Sobol' indices (spec/studies.md: `sampling`,
+// Distributions, random and quasi-random designs and Sobol' indices (docs/methods/studies.md: `sampling`,
 // `sobol_indices`, validation references), against closed forms and OpenTURNS itself.
 #include <gtest/gtest.h>
 
@@ -272,7 +272,7 @@ TEST(Sampling, RankCorrelation) {
 
 TEST(SobolIndices, IshigamiWithinTheBootstrapIntervals) {
   // Ishigami f = sin x1 + a sin^2 x2 + b x3^4 sin x1, X_i ~ U(-pi, pi); exact indices from the
-  // partial variances, compared with the spec's 4-digit values.
+  // partial variances, compared with the 4-digit values of docs/methods/studies.md.
   const double a = 7, b = 0.1, p4 = std::pow(kPi, 4), p8 = p4 * p4;
   const double v1 = 0.5 * std::pow(1 + b * p4 / 5, 2), v2 = a * a / 8, v13 = 8 * b * b * p8 / 225;
   const double v = v1 + v2 + v13;

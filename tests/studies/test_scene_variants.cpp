@@ -17,7 +17,7 @@
 #include "core/config/config.hpp"
 #include "core/log/logger.hpp"
 #include "core/mpi/comm.hpp"
-#include "solvers/breach/io/run_breach.hpp"
+#include "solvers/breach/run/run_breach.hpp"
 #include "solvers/breach/model/scene_variants.hpp"
 #include "solvers/breach/model/simulate.hpp"
 #include "studies/run/study.hpp"

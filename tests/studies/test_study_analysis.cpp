@@ -32,7 +32,7 @@ nlohmann::json run(const fs::path& dir, const std::string& spec, bool analyze_on
 
 TEST(StudyAnalysis, IshigamiSobolIndicesThroughTheWholePipeline) {
   // a = 7, b = 0.1, X_i uniform(-pi, pi): S = (0.3139, 0.4424, 0), ST = (0.5576, 0.4424, 0.2437)
-  // (Ishigami & Homma 1990; spec/studies.md). N = 4000 base points, 20000 evaluations; the 95%
+  // (Ishigami & Homma 1990; docs/methods/studies.md). N = 4000 base points, 20000 evaluations; the 95%
   // bootstrap intervals of the estimates must hold the analytic values (seed fixed).
   const auto dir = suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF));
   const auto a = run(dir, R"X(variables:

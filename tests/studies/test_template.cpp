@@ -1,4 +1,4 @@
-// Templates and their expressions (spec/studies.md, "Templates"): the arithmetic agrees with
+// Templates and their expressions (docs/methods/studies.md, "Templates"): the arithmetic agrees with
 // Python's, the dissertation's WinDAM C template renders exactly, and mistakes are reported with
 // their place.
 #include <gtest/gtest.h>
@@ -28,7 +28,8 @@ using suite::testing::input_error_of;
 
 const std::map<std::string, double> kVariables = {{"x", 0.7}, {"y", 2.5}, {"Kd", 300.0}, {"Us", 70.0}, {"Scale", 3.0}};
 
-// Every operator, precedence and associativity rule, function and constant of the spec.
+// Every operator, precedence and associativity rule, function and constant of the template
+// syntax (docs/methods/studies.md, "Templates").
 const std::vector<std::string> kExpressions = {
     "1 + 2 * 3",
     "(1 + 2) * 3",
@@ -141,7 +142,7 @@ TEST(FormatNumber, PrintsTenSignificantDigits) {
   EXPECT_EQ(format_number(1234567.891234), "1234567.891");
 }
 
-// The WinDAM C input of the dissertation's study (spec/studies.md), fixed columns and all.
+// The WinDAM C input of the dissertation's study (docs/methods/studies.md), fixed columns and all.
 const std::string kWinDam =
     "IEMODEL 2 120 {Kd} {Us} 0.2\n"
     "CRESTPRFL\n"

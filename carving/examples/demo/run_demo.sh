@@ -5,8 +5,7 @@
 # 1. `seedcarve render` draws four synthetic seeds of known volume through the measuring camera:
 #    a wheat-sized ellipsoid and a creased grain (36 turntable views), a boxy milo grain
 #    (superellipsoid), and a wheat grain photographed from the top and the side (slicing).
-# 2. The real Kansas State wheat grain (36 photographs) joins them when the shared reference data
-#    is there (SUITE_SHARED_DIR, default ../shared next to the repository).
+# 2. The real Kansas State wheat grain (36 photographs, data/kstate_wheat_36view) joins them.
 # 3. One row names a folder that does not exist: its row reports the failure, the batch goes on.
 # 4. `seedcarve batch` measures them, rank 0 handing seeds to the other ranks; compare_truth.py
 #    puts each measured volume beside the true one.
@@ -16,7 +15,6 @@ shift 2
 MPIEXEC=("$@")
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../../.." && pwd)
-shared=${SUITE_SHARED_DIR:-$root/../shared}
 synthetic=$root/carving/examples/synthetic
 mkdir -p "$OUT/images"
 
@@ -35,12 +33,12 @@ for seed in wheat_ellipsoid:wheat_ellipsoid:51.2 creased_wheat:creased_grain:44.
   fi
   echo "$id,$images,$method,$weight,images/$id/profile.yaml" >> "$manifest"
 done
-kstate=$shared/reference/kstate_wheat_36view
-if [ -d "$kstate/images" ]; then
-  echo "kstate_wheat,$kstate/images,carving,,$root/carving/examples/profiles/kstate_wheat_turntable.yaml" >> "$manifest"
-else
-  echo "[carving demo] no $kstate: the real grain is left out (set SUITE_SHARED_DIR)" >&2
+kstate=$root/data/kstate_wheat_36view
+if [ ! -d "$kstate/images" ]; then
+  echo "[carving demo] $kstate/images is missing: the repository is incomplete (git checkout -- data)" >&2
+  exit 1
 fi
+echo "kstate_wheat,$kstate/images,carving,,$root/carving/examples/profiles/kstate_wheat_turntable.yaml" >> "$manifest"
 echo "missing_seed,images/no_such_folder,carving,,images/wheat_ellipsoid/profile.yaml" >> "$manifest"
 
 "${MPIEXEC[@]}" "$BIN/seedcarve" batch "$manifest" --out "$OUT/batch"

@@ -1,4 +1,4 @@
-// breach: the fast embankment overtopping-breach model (spec/breach.md).
+// breach: the fast embankment overtopping-breach model (docs/methods/breach.md).
 //   breach [scene.yaml] [key.path=value ...] [--out DIR]
 //   breach [scene.yaml] [key.path=value ...] --dakota params.in results.out   (Dakota driver)
 // Without a scene it runs the embedded default (examples/embankment_overtopping.yaml).

@@ -1,5 +1,5 @@
 #pragma once
-// Headcut advance by jet scour and mass failure of the face (spec/breach.md, stage II), the
+// Headcut advance by jet scour and mass failure of the face (docs/methods/breach.md, stage II), the
 // deterministic picture of Hanson, Robinson & Cook (2001) and Temple et al. (2005):
 //
 // 1. The overfall. Flow of unit discharge q leaves the brink at critical depth y_c = (q^2/g)^(1/3)

@@ -6,7 +6,7 @@
   table_3_4/<scene>.yaml                  the geometries of the Table 3.4 MPM scenes, so the
                                           same dam runs in breach, mpm2grid and foam_erosion_fem
 
-usage: make_examples.py SHARED_REFERENCE_DIR   (normally ../shared/reference)
+usage: make_examples.py [DATA_DIR]   (default: the repository's data/)
 
 What the tables do not fix is chosen here, the same for every member, and said in each file:
 crest width from the USBR rule w = z/5 + 10 ft (Design of Small Dams, 1987); 3H:1V faces (the
@@ -111,10 +111,10 @@ time:
 
 
 def main():
-    if len(sys.argv) != 2:
+    if len(sys.argv) > 2:
         sys.exit(__doc__)
-    ref = Path(sys.argv[1])
     here = Path(__file__).resolve().parent
+    ref = Path(sys.argv[1]) if len(sys.argv) == 2 else here.parents[2] / "data"
     materials = read_table(ref / "dissertation_table_2_1_materials.csv")
     scale_family(materials, here / "scale_family", piping=False)
     scale_family(materials, here / "scale_family_internal_erosion", piping=True)

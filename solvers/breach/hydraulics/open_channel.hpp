@@ -1,5 +1,5 @@
 #pragma once
-// Open-channel relations for the flow over and through the embankment (spec/breach.md). SI.
+// Open-channel relations for the flow over and through the embankment (docs/methods/breach.md). SI.
 namespace suite::breach {
 
 // Unit weight and density of water.

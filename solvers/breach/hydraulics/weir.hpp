@@ -1,6 +1,6 @@
 #pragma once
 // Discharge through a trapezoidal control section at critical flow (a broad-crested weir),
-// the breach and crest outflow law of spec/breach.md, from the DAMBRK/BREACH form
+// the breach and crest outflow law of docs/methods/breach.md, from the DAMBRK/BREACH form
 // (Fread 1988, NWS BREACH): with energy head h above the section invert (m), bottom width b (m),
 // side slopes s (horizontal per vertical) and gravity g (m/s^2),
 //   Q = c1 b h^1.5 + c2 s h^2.5,  c1 = (2/3)^1.5 sqrt(g),  c2 = (4/5)^2.5 sqrt(g/2)

@@ -1,6 +1,6 @@
 #pragma once
 // Reservoir stage-storage relation: volume V(H) stored below water level H and the surface
-// area A(H) = dV/dH used by level-pool routing, A dH/dt = Q_in - Q_out (spec/breach.md).
+// area A(H) = dV/dH used by level-pool routing, A dH/dt = Q_in - Q_out (docs/methods/breach.md).
 // Levels in m (same datum as the dam), volumes in m^3, areas in m^2.
 //
 //   power law: V = alpha (H - z0)^m for H >= z0 (alpha in m^(3-m), m >= 1; m = 1 is a

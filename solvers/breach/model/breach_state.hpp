@@ -1,6 +1,6 @@
 #pragma once
 // The breach model's state, its stages, and the right-hand side the integrator advances
-// (spec/breach.md; the stage structure of WinDAM C, Temple et al. 2005, Hanson et al. 2005):
+// (docs/methods/breach.md; the stage structure of WinDAM C, Temple et al. 2005, Hanson et al. 2005):
 //
 //   stage 0  internal erosion (only when the scene has `internal_erosion`, instead of 1 and 2):
 //            a pipe through the embankment grows at 2 kd (tau - tau_c) until its roof collapses;

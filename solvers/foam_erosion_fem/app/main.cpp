@@ -1,5 +1,5 @@
 // foam-erosion: OpenFOAM overtopping flow coupled step-wise to an FEM erosion model of the dam
-// surface (spec/foam_erosion_fem.md, issue 7).
+// surface (docs/methods/foam_erosion_fem.md, issue 7).
 //   foam-erosion [scene.yaml] [key.path=value ...] [--out DIR]        build, run, couple, write
 //   foam-erosion case [scene.yaml] [key.path=value ...] [--out DIR]   only write the case
 //   foam-erosion [scene.yaml] ... --out DIR --restart latest           go on from DIR/state.json

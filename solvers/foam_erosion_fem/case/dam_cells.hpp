@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "solvers/foam_erosion_fem/case/section_layout.hpp"
-#include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/io/foam_reader.hpp"
 
 namespace suite::foam_erosion {
 

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/io/atomic_file.hpp"
-#include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/io/foam_reader.hpp"
 
 namespace suite::foam_erosion {
 

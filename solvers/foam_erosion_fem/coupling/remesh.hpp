@@ -14,7 +14,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "solvers/foam_erosion_fem/io/prepare_case.hpp"
+#include "solvers/foam_erosion_fem/run/prepare_case.hpp"
 
 namespace suite::foam_erosion {
 

@@ -4,7 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/io/foam_reader.hpp"
 
 namespace suite::foam_erosion {
 

@@ -1,5 +1,5 @@
 #pragma once
-// Finite-element erosion of the dam surface (spec/foam_erosion_fem.md step 6).
+// Finite-element erosion of the dam surface (docs/methods/foam_erosion_fem.md step 6).
 //
 // The surface is a SurfaceCurve of linear (P1) elements. One coupling step:
 // 1. Erosion rate per element from its bed shear stress, e = kd (tau - tau_c)^+ (m/s).

@@ -1,6 +1,6 @@
 #pragma once
 // The dam surface of a 2D (one-cell-thick) case as an open polyline of linear finite elements
-// (spec/foam_erosion_fem.md step 6).
+// (docs/methods/foam_erosion_fem.md step 6).
 //
 // Coordinates are in m: x streamwise (the flow goes +x), y up. Nodes run from upstream to
 // downstream, element e joins node e to node e+1, and the soil lies to the right of the walking

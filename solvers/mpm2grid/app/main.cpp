@@ -1,4 +1,4 @@
-// mpm2grid: two-grid soil-water Material Point Method (spec/mpm2grid.md, issue 3).
+// mpm2grid: two-grid soil-water Material Point Method (docs/methods/mpm2grid.md, issue 3).
 //   mpm2grid [scene.yaml] [key.path=value ...] [--out DIR]
 //   mpm2grid [scene.yaml] [key.path=value ...] [--out DIR] --dakota params.in results.out
 //     (a Dakota analysis driver: variables are scene keys, responses keys of summary.json)

@@ -1,5 +1,5 @@
 #pragma once
-// The water inlet on the domain's x_low side (spec/mpm2grid.md, steps 4 and 6): water enters
+// The water inlet on the domain's x_low side (docs/methods/mpm2grid.md, steps 4 and 6): water enters
 // through the section [floor, floor + H] (over the whole depth along z in 3D) with the discharge
 // q(t) per metre of width (m^2/s), either constant (the dissertation's Table 3.4: a height and a
 // velocity, q = v H) or a hydrograph table with linear interpolation.

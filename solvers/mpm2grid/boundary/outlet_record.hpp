@@ -1,5 +1,5 @@
 #pragma once
-// The outflow hydrograph Q(t) at the open sides (spec/mpm2grid.md, step 6): particles that leave
+// The outflow hydrograph Q(t) at the open sides (docs/methods/mpm2grid.md, step 6): particles that leave
 // through an open side are removed and their masses booked (Simulation::outflow()); sampled at
 // the series times, the mass booked since the previous sample over the interval's length and
 // the species' density gives the mean discharge over that interval:

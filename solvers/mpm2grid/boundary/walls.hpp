@@ -1,5 +1,5 @@
 #pragma once
-// The walls of the scene's box (spec/mpm2grid.md, step 4). Each side is a wall or open:
+// The walls of the scene's box (docs/methods/mpm2grid.md, step 4). Each side is a wall or open:
 //   slip      no flow into the wall, free tangential motion: v -= min(v . n, 0) n
 //   sticky    no motion at the wall: v = 0
 //   friction  Coulomb: the normal velocity into the wall is removed and the tangential speed

@@ -1,5 +1,5 @@
 #pragma once
-// The drag-coupled grid velocity update with the consistent drag matrix (spec/mpm2grid.md,
+// The drag-coupled grid velocity update with the consistent drag matrix (docs/methods/mpm2grid.md,
 // "Discretization", step 3), solved with PETSc. Per velocity component, on the nodes where both
 // species have mass (the "coupled" nodes),
 //   [ M_s + dt D   -dt D      ] [v_s]   [b_s]

@@ -1,5 +1,5 @@
 #pragma once
-// The drag-coupled grid velocity update (spec/mpm2grid.md, step 3), node by node with the lumped
+// The drag-coupled grid velocity update (docs/methods/mpm2grid.md, step 3), node by node with the lumped
 // drag matrix: with b_a = (m v)_a + dt f_a (f including gravity) and d = sum_p c_E V_p w_ip,
 //   [ m_s + dt d   -dt d     ] [v_s]   [b_s]
 //   [ -dt d        m_w + dt d] [v_w] = [b_w]

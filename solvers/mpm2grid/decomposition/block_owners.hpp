@@ -1,5 +1,5 @@
 #pragma once
-// Which rank owns each grid block (spec/mpm2grid.md, "Decomposition and performance design"):
+// Which rank owns each grid block (docs/methods/mpm2grid.md, "Decomposition and performance design"):
 // one small table, block key -> rank, the same on every rank. It holds one integer per block
 // (never node values): the grid's nodes and the solution live only on the ranks that own or
 // border them. The table is set by a partition (decomposition/partition.hpp) and grows between

@@ -1,6 +1,6 @@
 #pragma once
 // The domain decomposition of an mpm2grid run over the ranks of a communicator
-// (spec/mpm2grid.md, "Decomposition and performance design"; issue 3, item 5). Ranks own grid
+// (docs/methods/mpm2grid.md, "Decomposition and performance design"; issue 3, item 5). Ranks own grid
 // blocks (block_owners.hpp); a particle belongs to the rank owning its home block (the block
 // holding the lower corner of its cell). Per step:
 //   prepare()         the grid of this rank's particles' stencils: blocks no rank owns yet are

@@ -1,5 +1,5 @@
 #pragma once
-// The halo of a rank's grid (spec/mpm2grid.md, "Decomposition and performance design"). A rank's
+// The halo of a rank's grid (docs/methods/mpm2grid.md, "Decomposition and performance design"). A rank's
 // grid holds the blocks its particles' stencils touch: the ones it owns and, where its particles
 // sit within two cells of another rank's blocks, some of that rank's ("ghost" blocks: the 2-cell
 // halo of cubic B-splines). Per step:

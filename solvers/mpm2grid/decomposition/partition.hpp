@@ -1,5 +1,5 @@
 #pragma once
-// The partition of the active grid blocks over the ranks (spec/mpm2grid.md, "Decomposition and
+// The partition of the active grid blocks over the ranks (docs/methods/mpm2grid.md, "Decomposition and
 // performance design"): METIS k-way on the blocks' adjacency graph (blocks sharing a face, an
 // edge or a corner: a particle's stencil spans up to 2^Dim of them), with one balance
 // constraint per species (a block's soil and water particle counts), so that each rank gets

@@ -1,5 +1,5 @@
 #pragma once
-// The sparse background grid (spec/mpm2grid.md, "Model no more than the scene needs"): nodes
+// The sparse background grid (docs/methods/mpm2grid.md, "Model no more than the scene needs"): nodes
 // exist only in blocks of 4^Dim nodes that some particle's B-spline stencil touches, found from
 // the particles every step, never a dense box over the domain. Node (i, j[, k]) sits at
 // (i h, j h[, k h]); block b holds nodes 4 b .. 4 b + 3 per axis. Both species' grids use the

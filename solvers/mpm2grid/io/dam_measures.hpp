@@ -1,5 +1,5 @@
 #pragma once
-// What a dam-breach run measures of its dam (spec/mpm2grid.md, "Purpose"; issue 3, item 6).
+// What a dam-breach run measures of its dam (docs/methods/mpm2grid.md, "Purpose"; issue 3, item 6).
 //
 // Eroded soil volume. A soil particle stands for its as-placed volume V_p^0 (mass over the
 // soil's density), a lattice cell of side s around its centre. It still belongs to the dam while

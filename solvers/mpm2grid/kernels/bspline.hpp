@@ -1,5 +1,5 @@
 #pragma once
-// Cubic B-spline interpolation weights (spec/mpm2grid.md, "Discretization"):
+// Cubic B-spline interpolation weights (docs/methods/mpm2grid.md, "Discretization"):
 //   N(x) = 1/2 |x|^3 - |x|^2 + 2/3   on [0, 1),   1/6 (2 - |x|)^3   on [1, 2),   0 beyond,
 // x in units of the grid spacing h, tensor product over the dimensions. A particle at x_p
 // touches the 4^Dim nodes base + k, k in {0..3}^Dim, base = floor(x_p / h) - 1 (grid origin at 0).

@@ -1,6 +1,6 @@
 #pragma once
 // Soil: Hencky elasticity with Drucker-Prager plasticity whose cohesion drops with water
-// saturation (spec/mpm2grid.md, "Soil"; Klar et al. 2016, Tampubolon et al. 2017).
+// saturation (docs/methods/mpm2grid.md, "Soil"; Klar et al. 2016, Tampubolon et al. 2017).
 //
 // Units: stresses, moduli and cohesion in Pa (N/m^2; Kirchhoff stress tau = J sigma also in Pa),
 // energy density in J/m^3 of the reference volume, angles in radians, strains dimensionless.
@@ -45,8 +45,8 @@
 // Cohesion. c(S) = c0 (1 - clamp(S, 0, 1)): dry soil (S = 0) has the full cohesion c0, fully
 // saturated soil (S = 1) none.
 //
-// Volume correction (Tampubolon et al. 2017 as transcribed in shared/background/mpm.md,
-// section 3.2; the Klar 2016 / Ziran "logJp" family). Each particle carries log_jp
+// Volume correction (Tampubolon et al. 2017, ACM Trans. Graph. 36(4) 105; the
+// Klar et al. 2016 / Ziran "logJp" family; docs/methods/mpm2grid.md). Each particle carries log_jp
 // (dimensionless, the log of a volume ratio). In project():
 //   1. the trial strain is shifted isotropically before the yield test:
 //        eps_tr <- log(sigma(F_trial)) + (log_jp / Dim) 1;
@@ -210,8 +210,8 @@ struct HenckyDruckerPrager {
 // The dry cohesion c0 (Pa) of the stress-space cone above equivalent to a strain-space cohesion
 // c_C (dimensionless), the form of Klar et al. 2016 / Tampubolon et al. 2017 that the source
 // dissertation's Table 3.4 gives (0.002 - 0.01). That form tests the trial strain shifted by
-// (c_C / (Dim alpha)) 1, alpha = sqrt(2/3) 2 sin(phi_f) / (3 - sin(phi_f)) (shared/background/
-// mpm.md, section 3.2), against the cohesionless cone, whose apex is at tr(eps) = 0: the shifted
+// (c_C / (Dim alpha)) 1, alpha = sqrt(2/3) 2 sin(phi_f) / (3 - sin(phi_f)) (Klar et al. 2016,
+// ACM Trans. Graph. 35(4) 103), against the cohesionless cone, whose apex is at tr(eps) = 0: the shifted
 // cone's apex is at the tensile volumetric log strain tr(eps) = c_C / alpha. The cone above has
 // its apex at tr(eps) = q_c / (M K) = c0 / (K tan(phi_f)); equal apexes give
 //   c0 = K tan(phi_f) c_C / alpha      (K the bulk modulus, Pa; phi_f > 0).

@@ -1,5 +1,5 @@
 #pragma once
-// Water: weakly compressible (Tait-type) equation of state (spec/mpm2grid.md, "Water").
+// Water: weakly compressible (Tait-type) equation of state (docs/methods/mpm2grid.md, "Water").
 //
 //   p(J) = k (J^-gamma - 1)                 pressure, Pa (compression positive)
 //   sigma = -p I                            Cauchy stress, Pa

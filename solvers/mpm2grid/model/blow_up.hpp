@@ -1,5 +1,5 @@
 #pragma once
-// When a run has blown up (spec/mpm2grid.md, "Output and restart": a NaN or an energy blow-up
+// When a run has blown up (docs/methods/mpm2grid.md, "Output and restart": a NaN or an energy blow-up
 // stops the run). Particles start at rest, so a particle can only move as fast as falling
 // through the whole domain and the inflow make it: v_phys = sqrt(v_in^2 + 2 g H), H the domain's
 // height along gravity, v_in the inlet's velocity at the time. A particle kFactor times faster

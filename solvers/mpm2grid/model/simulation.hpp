@@ -1,5 +1,5 @@
 #pragma once
-// One two-species (soil + water) MPM model and its time step (spec/mpm2grid.md, "Step n -> n+1"):
+// One two-species (soil + water) MPM model and its time step (docs/methods/mpm2grid.md, "Step n -> n+1"):
 //   1. blocks of the sparse grid from both species' stencils;
 //   2. P2G per species, the water first: mass, APIC momentum, internal force from the Kirchhoff
 //      stresses (soil: Hencky; water: weakly compressible), the soil's drag coefficients c_E V_p
@@ -26,7 +26,7 @@
 // copy after the grid solve and the particles' migration to their new owners (decomposition/)
 // (and, with buoyancy, a forward copy of the water's node pressures); the sums over
 // particles (masses, energies, the outflow) are then over all ranks.
-// Buoyancy (spec/mpm2grid.md, "Buoyancy"; on unless a scene turns it off): the soil skeleton
+// Buoyancy (docs/methods/mpm2grid.md, "Buoyancy"; on unless a scene turns it off): the soil skeleton
 // feels the water's pressure field, the Archimedes force -(1 - n) V_s grad p on each soil
 // particle, with grad p = sum_i p_i grad w_ip from the water grid's node pressures
 // p_i = sum_p w_ip m_p p_p / m_i (0 where there is no water). Submerged, the skeleton then

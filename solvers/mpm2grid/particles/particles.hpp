@@ -1,5 +1,5 @@
 #pragma once
-// One species' material points as a structure of arrays (spec/mpm2grid.md). Units: metres,
+// One species' material points as a structure of arrays (docs/methods/mpm2grid.md). Units: metres,
 // seconds, kilograms; in 2D masses and volumes are per metre of thickness (kg/m, m^2).
 #include <algorithm>
 #include <cstddef>

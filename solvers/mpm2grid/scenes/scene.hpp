@@ -1,5 +1,5 @@
 #pragma once
-// An mpm2grid scene (YAML; spec/mpm2grid.md, "Scenes"): the box, the grid spacing, the species
+// An mpm2grid scene (YAML; docs/methods/mpm2grid.md, "Scenes"): the box, the grid spacing, the species
 // with their materials and regions, walls, gravity and time control. Example
 // (scenes/water_column_collapse.yaml):
 //

@@ -1,5 +1,5 @@
 #pragma once
-// APIC transfers with cubic B-splines (Jiang et al. 2015; spec/mpm2grid.md, steps 1, 2 and 5),
+// APIC transfers with cubic B-splines (Jiang et al. 2015; docs/methods/mpm2grid.md, steps 1, 2 and 5),
 // one species at a time:
 //   P2G  m_i = sum_p w_ip m_p,   (m v)_i = sum_p w_ip m_p (v_p + C_p (x_i - x_p)),
 //        f_i = -sum_p V_p^0 tau_p grad w_ip   (tau_p the Kirchhoff stress: V^0 P F^T = V^0 tau)
