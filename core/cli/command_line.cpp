@@ -32,7 +32,8 @@ Parsed parse(const Spec& spec, int argc, const char* const* argv) {
         ->expected(2);
   app.footer(
       "Overrides set any key of the scene, e.g. soil.cohesion=5kPa output.every=20.\n"
-      "PETSc options: the scene's petsc: section or the PETSC_OPTIONS environment variable.");
+      "PETSc options (mpm2grid, drag: consistent): the scene's petsc_options key or the PETSC_OPTIONS environment "
+      "variable.");
 
   Parsed result;
   try {

@@ -5,7 +5,7 @@
 //             [--log-level LEVEL] [--log-all-ranks] [--dakota PARAMS RESULTS]
 //
 // CLI11 lives in command_line.cpp only (it is header-only and slow to compile).
-// PETSc options go in the scene's `petsc:` section or the PETSC_OPTIONS environment variable.
+// PETSc options go in the scene's `petsc_options` key or the PETSC_OPTIONS environment variable.
 #include <filesystem>
 #include <optional>
 #include <string>

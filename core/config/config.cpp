@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -24,6 +25,7 @@ struct State {
   std::map<std::string, std::set<std::string>> requested;  // section path -> keys asked for
   std::set<std::string> free_form;                         // subtrees passed on unchecked
   std::map<std::string, std::string> overridden;           // key path -> "key=value" argument
+  std::map<std::string, std::string> resolved;             // key path -> value as the program read it
 };
 
 namespace {
@@ -55,6 +57,48 @@ std::string location(const State& s, const std::string& path, const YAML::Mark& 
 
 std::string fmt_g(double v) {
   return fmt::format("{:g}", v);
+}
+
+// Values as resolved() records them: numbers in the shortest form that reads back to the same
+// bits, so that two configurations that mean the same thing ("2 m", "200 cm") record the same
+// text and any change shows.
+std::string exact(double v) {
+  return fmt::format("{}", v);
+}
+std::string exact(double v, const std::string& unit) {
+  return unit.empty() || unit == "1" ? exact(v) : exact(v) + " " + unit;
+}
+template <class T>
+std::string resolved_text(const T& v) {
+  if constexpr (std::is_same_v<T, double>) {
+    return exact(v);
+  } else if constexpr (std::is_same_v<T, bool>) {
+    return v ? "true" : "false";
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    return v;
+  } else if constexpr (std::is_integral_v<T>) {
+    return std::to_string(v);
+  } else {
+    std::string out = "[";
+    for (const auto& e : v) out += (out.size() > 1 ? ", " : "") + resolved_text(e);
+    return out + "]";
+  }
+}
+
+// A file's content as resolved() records it: its size and 64-bit FNV-1a digest, so that a
+// changed file shows and a moved one does not.
+std::string content_digest(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::uint64_t hash = 14695981039346656037ULL, size = 0;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      hash ^= static_cast<unsigned char>(buffer[i]);
+      hash *= 1099511628211ULL;
+    }
+    size += static_cast<std::uint64_t>(in.gcount());
+  }
+  return fmt::format("a file of {} bytes, FNV-1a {:016x}", size, hash);
 }
 
 bool parse_double(std::string_view text, double& out, std::size_t& used) {
@@ -249,6 +293,10 @@ void Section::store_default(const std::string& key, const YAML::Node& value) con
   (*node_)[key] = value;
 }
 
+void Section::resolve(const std::string& key, std::string value) const {
+  state_->resolved[child_path(key)] = std::move(value);
+}
+
 namespace {
 // A required key is absent. If the section holds a key the program never asked for that is a
 // near miss of it, the message points at that line: the usual cause is a typo.
@@ -346,7 +394,9 @@ template <class T>
 T Section::get(const std::string& key) const {
   const YAML::Node n = child(key);
   if (!n.IsDefined() || n.IsNull()) missing(*state_, path_, *node_, key, "a value");
-  return convert<T>(key, n);
+  T v = convert<T>(key, n);
+  resolve(key, resolved_text(v));
+  return v;
 }
 
 template <class T>
@@ -354,9 +404,12 @@ T Section::get(const std::string& key, const T& fallback) const {
   const YAML::Node n = child(key);
   if (!n.IsDefined() || n.IsNull()) {
     store_default(key, YAML::Node(fallback));
+    resolve(key, resolved_text(fallback));
     return fallback;
   }
-  return convert<T>(key, n);
+  T v = convert<T>(key, n);
+  resolve(key, resolved_text(v));
+  return v;
 }
 
 #define SUITE_CONFIG_INSTANTIATE(T)                     \
@@ -414,6 +467,7 @@ double Section::quantity(const std::string& key, const std::string& unit, Range 
     missing(*state_, path_, *node_, key, unit.empty() ? "a number" : "a value in " + unit);
   const double v = parse_quantity(key, n, unit);
   if (!range.contains(v)) reject(key, fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit));
+  resolve(key, exact(v, unit));
   return v;
 }
 
@@ -422,10 +476,12 @@ double Section::quantity(const std::string& key, const std::string& unit, double
   if (!n.IsDefined() || n.IsNull()) {
     store_default(
         key, unit.empty() || unit == "1" ? YAML::Node(fallback) : YAML::Node(fmt::format("{} {}", fallback, unit)));
+    resolve(key, exact(fallback, unit));
     return fallback;
   }
   const double v = parse_quantity(key, n, unit);
   if (!range.contains(v)) reject(key, fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit));
+  resolve(key, exact(v, unit));
   return v;
 }
 
@@ -451,6 +507,13 @@ std::vector<std::vector<double>> Section::table(const std::string& key, const st
     }
     out.push_back(std::move(values));
   }
+  std::string text;
+  for (const auto& row : out) {
+    std::string r;
+    for (std::size_t c = 0; c < row.size(); ++c) r += (c ? ", " : "") + exact(row[c], units[c]);
+    text += (text.empty() ? "[" : ", ") + ("[" + r + "]");
+  }
+  resolve(key, text + "]");
   return out;
 }
 
@@ -466,6 +529,7 @@ std::string Section::choice(const std::string& key, const std::vector<std::strin
                             const std::string& fallback) const {
   if (!has(key)) {
     store_default(key, YAML::Node(fallback));
+    resolve(key, fallback);
     return fallback;
   }
   return choice(key, valid);
@@ -481,6 +545,7 @@ std::filesystem::path Section::file(const std::string& key) const {
   // The effective configuration names the file absolutely, so it can be rerun from anywhere.
   p = std::filesystem::absolute(p).lexically_normal();
   store_default(key, YAML::Node(p.string()));
+  resolve(key, content_digest(p));
   return p;
 }
 
@@ -495,8 +560,14 @@ std::vector<std::filesystem::path> Section::files(const std::string& key) const 
     out.push_back(std::filesystem::absolute(p).lexically_normal());
   }
   YAML::Node list(YAML::NodeType::Sequence);
-  for (const auto& p : out) list.push_back(p.string());
+  std::string digests;
+  for (const auto& p : out) {
+    list.push_back(p.string());
+    std::error_code ec;
+    digests += (digests.empty() ? "" : "; ") + (std::filesystem::is_regular_file(p, ec) ? content_digest(p) : "a folder");
+  }
   store_default(key, list);
+  resolve(key, "[" + digests + "]");
   return out;
 }
 
@@ -512,7 +583,9 @@ const std::filesystem::path& Section::base_dir() const {
 
 YAML::Node Section::raw(const std::string& key) const {
   state_->free_form.insert(child_path(key));
-  return child(key);
+  const YAML::Node n = child(key);
+  if (n.IsDefined() && !n.IsNull()) resolve(key, one_line(n));
+  return n;
 }
 
 // --------------------------------------------------------------------------------------- Config
@@ -554,6 +627,10 @@ std::string Config::effective_yaml() const {
 
 void Config::write_effective(const std::filesystem::path& path) const {
   io::write_file_atomic(path, effective_yaml());
+}
+
+const std::map<std::string, std::string>& Config::resolved() const {
+  return state_->resolved;
 }
 
 const std::string& Config::source_name() const {

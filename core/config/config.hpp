@@ -15,6 +15,7 @@
 // Nothing here is collective: every rank reads the same file and reaches the same verdict.
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -106,6 +107,7 @@ class Section {
   T convert(const std::string& key, const YAML::Node& n) const;
   double parse_quantity(const std::string& key, const YAML::Node& n, const std::string& unit) const;
   void store_default(const std::string& key, const YAML::Node& value) const;
+  void resolve(const std::string& key, std::string value) const;  // for Config::resolved()
 
   std::shared_ptr<State> state_;
   std::shared_ptr<YAML::Node> node_;
@@ -127,6 +129,11 @@ class Config {
   // The configuration as used: file + overrides + defaults that were applied.
   std::string effective_yaml() const;
   void write_effective(const std::filesystem::path& path) const;
+  // Every key the program read, by path ("soil.regions[0].trapezoid.height"), with the value as
+  // it understood it: numbers to the last bit, quantities in the unit it asked for ("3.75 m"
+  // and "375 cm" both read "3.75 m"), defaults included, a file as its size and content digest.
+  // Two runs that read the same map ran the same scene (restart checks compare it).
+  const std::map<std::string, std::string>& resolved() const;
   const std::string& source_name() const;
 
  private:

@@ -36,6 +36,12 @@ Comm Comm::split(int color, int key) const {
   return Comm(c, std::make_shared<Owned>(c));
 }
 
+Comm Comm::split_shared() const {
+  MPI_Comm c = MPI_COMM_NULL;
+  SUITE_MPI_CHECK(MPI_Comm_split_type(raw_, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &c));
+  return Comm(c, std::make_shared<Owned>(c));
+}
+
 void Comm::barrier() const {
   SUITE_MPI_CHECK(MPI_Barrier(raw_));
 }

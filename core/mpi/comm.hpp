@@ -27,6 +27,7 @@ class Comm {
 
   Comm dup() const;                      // COLLECTIVE; owning
   Comm split(int color, int key) const;  // COLLECTIVE; owning
+  Comm split_shared() const;             // COLLECTIVE; owning: the ranks of this node
 
   void barrier() const;  // COLLECTIVE
 

@@ -2,6 +2,7 @@
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -48,6 +49,10 @@ double RunRecord::wall_seconds() const {
 nlohmann::json RunRecord::to_json(const PhaseTimers& timers, const std::string& status) const {
   const BuildInfo b = build_info();
   const char* threads = std::getenv("OMP_NUM_THREADS");
+  // The process's largest resident set so far (Linux reports KiB).
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double peak_rss = 1024.0 * static_cast<double>(usage.ru_maxrss);
   nlohmann::json j = {
       {"program", program_},
       {"version", b.version},
@@ -63,6 +68,7 @@ nlohmann::json RunRecord::to_json(const PhaseTimers& timers, const std::string& 
       {"started_utc", started_utc_},
       {"wall_time_s", comm_.max(wall_seconds())},
       {"phases", timers.reduce_to_json(comm_)},
+      {"peak_resident_memory_bytes", {{"max_rank", comm_.max(peak_rss)}, {"all_ranks", comm_.sum(peak_rss)}}},
       {"status", status},
   };
   for (const auto& [k, v] : extra_.items()) j[k] = v;

@@ -1,5 +1,6 @@
 #include "core/run/signals.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 
@@ -25,7 +26,7 @@ extern "C" void on_signal(int sig) {
 }
 }  // namespace
 
-SignalWatcher::SignalWatcher() {
+SignalWatcher::SignalWatcher(std::filesystem::path request_dir) : request_dir_(std::move(request_dir)) {
   if (g_installed.exchange(true)) throw LibraryError("only one SignalWatcher may exist at a time");
   g_request = 0;
   g_signal = 0;
@@ -50,7 +51,16 @@ int SignalWatcher::last_signal() const {
 }
 
 SignalRequest SignalWatcher::poll(const mpi::Comm& comm) {
-  const int mine = g_request.exchange(0);
+  int mine = g_request.exchange(0);
+  if (!request_dir_.empty() && comm.is_root()) {
+    // A request file counts once: it is removed when seen.
+    const auto take = [&](const char* name, SignalRequest r) {
+      std::error_code ec;
+      if (std::filesystem::remove(request_dir_ / name, ec)) mine = std::max(mine, static_cast<int>(r));
+    };
+    take("checkpoint_now", SignalRequest::checkpoint);
+    take("stop", SignalRequest::checkpoint_and_stop);
+  }
   return static_cast<SignalRequest>(comm.max(static_cast<long long>(mine)));
 }
 
@@ -59,9 +69,9 @@ const char* describe(SignalRequest r) {
     case SignalRequest::none:
       return "none";
     case SignalRequest::checkpoint:
-      return "checkpoint (SIGUSR1)";
+      return "checkpoint (SIGUSR1 or a checkpoint_now file)";
     case SignalRequest::checkpoint_and_stop:
-      return "checkpoint and stop (SIGTERM/SIGINT)";
+      return "checkpoint and stop (SIGTERM, SIGINT or a stop file)";
   }
   return "?";
 }

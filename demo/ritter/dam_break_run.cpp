@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/checkpoint/checkpoint.hpp"
+#include "core/checkpoint/scene_match.hpp"
 #include "core/checkpoint/schedule.hpp"
 #include "core/errors.hpp"
 #include "core/io/csv_series.hpp"
@@ -29,7 +30,11 @@ namespace {
 using config::Range;
 
 constexpr const char* kSolver = "suite-demo";
-constexpr long long kCheckpointFormat = 1;
+constexpr long long kCheckpointFormat = 2;  // 2: the scene's keys
+
+// The scene keys a restart may change: a later end extends the run; the rest only say when to
+// stop and how often to write.
+const std::vector<std::string> kMayChangeOnRestart{"time.end", "time.max_steps", "time.output", "checkpoint"};
 
 struct Scene {
   double h0, reservoir_length, width, channel_length, gravity;
@@ -37,11 +42,6 @@ struct Scene {
   double t_end, sample, output;
   long long max_steps;
   checkpoint::ScheduleSettings checkpoints;
-
-  // The values a restart must share with the run that wrote the checkpoint.
-  std::array<double, 8> physics() const {
-    return {h0, reservoir_length, width, channel_length, gravity, double(cells), t_end, sample};
-  }
 };
 
 Scene read_scene(const config::Config& cfg) {
@@ -106,9 +106,11 @@ const std::vector<io::CsvColumn> kColumns{
 
 class DamBreakRun {
  public:
-  DamBreakRun(const mpi::Comm& comm, const Scene& s, const DamBreakOptions& o, Logger& log)
+  DamBreakRun(const mpi::Comm& comm, const Scene& s, checkpoint::SceneRecord keys, const DamBreakOptions& o,
+              Logger& log)
       : comm_(comm),
         s_(s),
+        scene_keys_(std::move(keys)),
         log_(log),
         ritter_(s.h0, s.gravity),
         block_(block_of(comm, s)),
@@ -132,7 +134,7 @@ class DamBreakRun {
       start_outputs(false);
       write_fields(0);
     }
-    SignalWatcher signals;
+    SignalWatcher signals(out_);
     checkpoint::Schedule schedule(s_.checkpoints);
     ProgressLine progress(log_, time_of(p_.step), s_.t_end);
     const long long first_step = p_.step;
@@ -155,6 +157,8 @@ class DamBreakRun {
         return 0;
       }
     }
+    // The final state, so that a later time.end can extend the run (--restart latest).
+    if (last_checkpoint_step_ != p_.step) write_checkpoint();
     finish();
     return 0;
   }
@@ -253,13 +257,13 @@ class DamBreakRun {
     const auto path = checkpoint::file_name(checkpoints_, "checkpoint", p_.step);
     checkpoint::Writer w(comm_, path, {kSolver, kCheckpointFormat, p_.step, time_of(p_.step), "", 0});
     w.write_bytes("progress", std::as_bytes(std::span(&p_, 1)));
-    const auto physics = s_.physics();
-    w.write<double>("scene", physics);
+    w.write<unsigned char>("scene_keys", scene_keys_.bytes());
     const std::array<long long, 2> range{block_.first, block_.count};
     w.write<long long>("block", range);
     w.commit();
     if (comm_.is_root()) checkpoint::prune(checkpoints_, "checkpoint", s_.checkpoints.keep);
     record_.write(out_ / "run.json", timers_, fmt::format("running: checkpoint at step {}", p_.step));
+    last_checkpoint_step_ = p_.step;
     log_.info("checkpoint {} written", path.filename().string());
   }
 
@@ -272,12 +276,14 @@ class DamBreakRun {
       throw InputError(fmt::format("checkpoint '{}' holds a progress record of {} bytes, not {}", path.string(),
                                    bytes.size(), sizeof(Progress)));
     std::memcpy(&p_, bytes.data(), sizeof p_);
-    const auto physics = s_.physics();
-    if (r.read<double>("scene") != std::vector<double>(physics.begin(), physics.end()))
-      throw InputError(
-          fmt::format("checkpoint '{}' was written for another scene (depth, lengths, gravity, cells or time "
-                      "sampling differ); restart with the scene it was written with",
-                      path.string()));
+    const auto where = fmt::format("checkpoint '{}'", path.string());
+    checkpoint::SceneRecord::from_bytes(r.read<unsigned char>("scene_keys"), where)
+        .require_same(scene_keys_, kMayChangeOnRestart, where);
+    if (p_.step >= n_steps_)
+      throw InputError(fmt::format("time.end = {} s: {} is at t = {} s already; give a later time.end to extend the "
+                                   "run",
+                                   s_.t_end, where, r.header().time));
+    last_checkpoint_step_ = p_.step;
     const auto range = r.read<long long>("block");
     if (range != std::vector<long long>{block_.first, block_.count})
       throw LibraryError("checkpoint block layout differs from this run's");
@@ -311,6 +317,7 @@ class DamBreakRun {
 
   mpi::Comm comm_;
   Scene s_;
+  checkpoint::SceneRecord scene_keys_;  // the scene as read, kept in every checkpoint
   Logger& log_;
   RitterSolution ritter_;
   Block block_;
@@ -318,6 +325,7 @@ class DamBreakRun {
   PhaseTimers timers_;
   std::filesystem::path out_, checkpoints_;
   long long n_steps_ = 0, output_every_ = 1;
+  long long last_checkpoint_step_ = -1;  // the step of the newest checkpoint of this run
   double initial_volume_ = 0.0;
   Progress p_;
   std::optional<io::CsvSeries> csv_;    // rank 0 only
@@ -328,7 +336,7 @@ class DamBreakRun {
 
 int run_dam_break(const mpi::Comm& comm, const config::Config& scene, const DamBreakOptions& options, Logger& log) {
   const Scene s = read_scene(scene);
-  DamBreakRun run(comm, s, options, log);
+  DamBreakRun run(comm, s, checkpoint::SceneRecord(scene), options, log);
   mpi::collective_try(comm, [&] {
     if (!comm.is_root()) return;
     scene.write_effective(run.out() / "effective_config.yaml");

@@ -13,7 +13,7 @@ namespace {
 TEST(Petsc, SessionOnACommunicatorSolvesAndReportsErrors) {
   suite::mpi::Comm world(MPI_COMM_WORLD);
   auto comm = world.dup();
-  suite::PetscSession session(comm, "-t_ksp_type cg -t_pc_type jacobi -t_ksp_rtol 1e-13");
+  suite::PetscSession session(comm, "-t_ksp_type cg -t_pc_type jacobi -t_ksp_rtol 1e-13 -t_ksp_rtoll -1e-3");
   const PetscInt n = 64;
   Mat A;
   Vec x, b;
@@ -38,6 +38,8 @@ TEST(Petsc, SessionOnACommunicatorSolvesAndReportsErrors) {
   KSPType type;
   SUITE_PETSC_CHECK(KSPGetType(ksp, &type));
   EXPECT_STREQ(type, KSPCG) << "options string reached the options database";
+  // The misspelt option (and its negative value, not an option name) is the only one unused.
+  EXPECT_EQ(session.unused_options(), std::vector<std::string>{"-t_ksp_rtoll"});
   const PetscScalar* xa;
   SUITE_PETSC_CHECK(VecGetArrayRead(x, &xa));
   for (PetscInt i = lo; i < hi; ++i) {

@@ -27,7 +27,7 @@ wait_for "checkpoint checkpoint_.*written"
 kill -TERM $pid
 wait $pid || true
 cat "$work/pieces.log" | grep -v " step " || true
-grep -q '"status": "stopped: checkpoint and stop (SIGTERM/SIGINT)"' "$work/pieces/run.json"
+grep -q '"status": "stopped: checkpoint and stop (SIGTERM, SIGINT or a stop file)"' "$work/pieces/run.json"
 n=$(ls "$work/pieces/checkpoints" | grep -c '\.h5$')
 [ "$n" = 2 ] || { echo "expected 2 checkpoints (USR1, TERM), found $n"; exit 1; }
 

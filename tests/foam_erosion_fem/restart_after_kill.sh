@@ -51,3 +51,18 @@ for f in erosion.csv profiles.csv discharge.csv; do
   cmp "$work/straight/$f" "$work/termed/$f"
 done
 echo "SIGTERM during step 2: stopped in $took s with nothing left running; the restart matches the uninterrupted run"
+
+# The finished run restarts only with its own scene: a changed soil or a finished end is refused
+# (one line, exit 2, naming the key); a later time.end extends it, its first rows unchanged.
+expect=$(dirname "$0")/../support/expect_input_error.sh
+"$expect" "was written for another scene|soil.erodibility" \
+  "$bin" "${scene[@]}" "soil.erodibility=30 cm^3/(N s)" --out "$work/termed" --restart latest
+"$expect" "time.end|give a later time.end" "$bin" "${scene[@]}" --out "$work/termed" --restart latest
+extended=("${scene[@]:0:2}" "time.end=2 s")
+"$bin" "${extended[@]}" --out "$work/termed" --restart latest --log-level warn
+grep -q '"status": "finished"' "$work/termed/summary.json" || { echo "the extended run did not finish"; exit 1; }
+rows=$(wc -l < "$work/straight/erosion.csv")
+head -n "$rows" "$work/termed/erosion.csv" | cmp - "$work/straight/erosion.csv" ||
+  { echo "extending the run changed its first 1.5 s"; exit 1; }
+[ "$(wc -l < "$work/termed/erosion.csv")" -gt "$rows" ] || { echo "the extension added no erosion step"; exit 1; }
+echo "a changed soil and a finished end were refused; time.end 1.5 -> 2 s extended the run"

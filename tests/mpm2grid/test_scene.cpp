@@ -11,6 +11,7 @@
 
 #include "core/config/config.hpp"
 #include "solvers/mpm2grid/model/simulation.hpp"
+#include "solvers/mpm2grid/scenes/memory_estimate.hpp"
 #include "solvers/mpm2grid/scenes/scene.hpp"
 
 namespace suite::mpm2grid {
@@ -125,7 +126,7 @@ TEST(SceneSeeding, PoreWaterSaturatesTheSoilAndRemovesItsCohesion) {
 // In the mixture the pore water fills the pores exactly (phi_i = n in the interior), so the
 // saturation is 1 only where the nodes' water is counted in full: at the walls, whose nodes hold
 // part of an interior node's weight (the slip wall's node half, the friction floor's nodes half
-// and 1/24), it is divided by that part (model/simulation.hpp). Next to the walls S then stays
+// and 1/24), it is divided by that part (docs/methods/mpm2grid.md, "Saturation"). Next to the walls S then stays
 // within the lattice's quadrature error of 1 (measured at least 0.993; without the division 0.43
 // at the block's corner), and farther than 4h from the walls and the block's free sides it is 1
 // to round-off.
@@ -152,6 +153,44 @@ TEST(SceneSeeding, MixturePoreWaterSaturatesTheSoilUpToTheWalls) {
   std::printf("mixture: saturation next to the walls at least %.4f (%d particles)\n", lowest_at_walls, at_walls);
   EXPECT_GE(lowest_at_walls, 0.98);
   EXPECT_EQ(at_walls + inner, 32 * 32);  // 0.16 m at 5 mm a row and a column
+}
+
+}  // namespace
+}  // namespace suite::mpm2grid
+
+namespace suite::mpm2grid {
+namespace {
+
+// The memory estimate counts the particles from the scene alone, on a sample of the lattice: on
+// scenes whose lattice it samples in full, and on ones it samples sparsely, the count is that of
+// the seeding within a few lattice rows of the regions' outline (2%); an inlet adds the water
+// its hydrograph brings over the run.
+template <int Dim>
+void expect_counts_match(const std::string& file, const std::vector<std::string>& overrides, double tolerance) {
+  const auto scene = read_scene<Dim>(config::Config::from_file(std::string(SUITE_SOURCE_DIR) + "/" + file, overrides));
+  Simulation<Dim> sim(scene.simulation);
+  seed_particles(scene, sim);
+  const auto e = estimate_memory(scene);
+  EXPECT_NEAR(e.soil_particles, static_cast<double>(sim.soil().size()), tolerance * sim.soil().size() + 1) << file;
+  double inflow = 0;
+  if (scene.simulation.inlet)
+    inflow = scene.simulation.inlet->discharge.cumulative(scene.time.end) /
+             std::pow(scene.simulation.h / scene.particles_per_cell, Dim);
+  EXPECT_NEAR(e.water_particles, static_cast<double>(sim.water().size()) + inflow,
+              tolerance * (sim.water().size() + inflow) + 1)
+      << file;
+  EXPECT_GT(e.bytes, 0);
+}
+
+TEST(MemoryEstimate, CountsTheParticlesTheSeedingMakes) {
+  const std::string scenes = "solvers/mpm2grid/scenes/";
+  // Sampled in full: the count is exact (an inlet's inflow aside, within a layer).
+  expect_counts_match<2>(scenes + "water_column_collapse.yaml", {}, 1e-12);
+  expect_counts_match<2>(scenes + "terzaghi.yaml", {}, 1e-12);  // saturated soil: pore water
+  expect_counts_match<2>(scenes + "table_3_4_example2.yaml", {}, 1e-3);
+  expect_counts_match<3>("tests/mpm2grid/two_species_3d.yaml", {"drag=lumped"}, 1e-12);
+  // 2.5 million lattice points, sampled every other point per axis.
+  expect_counts_match<2>(scenes + "table_3_4_example2.yaml", {"grid.spacing=0.025 m"}, 0.02);
 }
 
 }  // namespace

@@ -61,7 +61,7 @@ TYPED_TEST(Transfer, WeightsArePartitionOfUnityReproduceLinearFunctionsAndHaveCo
   }
 }
 
-// The branch-free weights per axis (cubic_bspline_axis) against the spec's piecewise N(r) and
+// The branch-free weights per axis (cubic_bspline_axis) against the piecewise N(r) of docs/methods/mpm2grid.md and
 // dN/dr at the four distances, over the cell and at its ends (a few operations on O(1) values:
 // 1e-15).
 TEST(BsplineAxis, ClosedFormEqualsThePiecewiseKernel) {

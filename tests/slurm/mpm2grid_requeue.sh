@@ -31,7 +31,7 @@ wait_for_job_end "$job" 600
 grep -v " step " "$log" || true
 scontrol show job "$job" | grep -E "JobState|Restarts|ExitCode"
 [ "$(state)" = COMPLETED ] || { echo "job ended $(state)"; exit 1; }
-grep -q "stopped at step .* on checkpoint and stop (SIGTERM/SIGINT)" "$log" ||
+grep -q "stopped at step .* on checkpoint and stop (SIGTERM, SIGINT or a stop file)" "$log" ||
   { echo "mpm2grid did not stop on the warning's SIGTERM (did the run end before the warning?)"; exit 1; }
 grep -q "start 2:.*--restart latest" "$log" || { echo "the second start did not restart"; exit 1; }
 grep -q "restarting from checkpoint_" "$work/pieces/log.txt" || { echo "mpm2grid did not restart"; exit 1; }

@@ -3,7 +3,7 @@
 // fields, physical properties, numerics, run control with the function objects the coupling
 // reads (discharge through the inlet, crest, toe and outlet sections; wall shear on the dam)
 // and parallel decomposition. The mesh itself is made by blockMesh and subsetMesh
-// (io/prepare_case.hpp), so the initial fields are written after it: subsetMesh would otherwise
+// (run/prepare_case.hpp), so the initial fields are written after it: subsetMesh would otherwise
 // have to cut them too.
 //
 // The inflow hydrograph goes in through variableHeightFlowRateInletVelocity +

@@ -66,7 +66,7 @@ struct SoilErosion {
   double kd = 0.0;                       // m^3/(N s)
   double tau_c = 0.0;                    // Pa
   std::optional<double> repose_angle;    // degrees
-  // Only for the breach-model run beside the coupled one (io/breach_comparison.hpp): its headcut
+  // Only for the breach-model run beside the coupled one (run/breach_comparison.hpp): its headcut
   // needs them. Without both there is no comparison.
   std::optional<double> undrained_shear_strength;  // s_u, Pa
   std::optional<double> unit_weight;               // gamma_t, N/m^3

@@ -1,41 +1,12 @@
 #pragma once
-// The walls' mirror condition on the cubic B-spline grid: the node one cell beyond a wall folded
-// into its mirror, the node one cell inside.
-//
-// Why. A particle within a cell of a wall spreads to the node one cell beyond it (weight up to
-// 1/6). The wall conditions (boundary/walls.hpp) act on the nodes on and beyond the wall, and the
-// node one cell inside, whose B-spline is 1/6 at the wall, got no reaction from it: its weak form
-// kept the boundary term -sigma_n N_1(wall) of the stress at the wall, which the particles next to
-// the wall balanced by themselves. In a still tank their pressure stood 23% of rho g H above
-// hydrostatic (20% of the load in Terzaghi's column), at every h.
-//
-// What. The velocity field is continued across the wall as its mirror image: a node one cell
-// beyond the wall moves as its mirror node one cell inside with the normal component reversed
-// (slip walls: free slip, dv_t/dn = 0) or with every component reversed (sticky walls: no
-// slip), v_beyond = S v_mirror. Putting that into the weak form adds the beyond node's
-// equation into its mirror's with S: P2G adds the beyond node's masses, drag coefficients and
-// pressure sums into the mirror node's, and its momentum and forces times S, and leaves the
-// beyond node empty (it takes no part in the grid solve); G2P reads the beyond node's velocity as
-// S times the mirror's (and its scalars as the mirror's). The mirror node's basis is then
-// N_1 + N_-1 for the tangential components and N_1 - N_-1 for the normal one, which vanishes at
-// the wall: the boundary term is gone, and a hydrostatic pressure balances gravity node by node.
-// The node on the wall is its own mirror (its normal velocity is zero, as before). Over several
-// walls (edges, corners) the folds compose axis by axis. Nothing changes for a particle more than
-// a cell from every wall.
-//
-// Where. Every slip and sticky wall, except the x_low side of a scene with an inlet, whose nodes
-// carry the inflow velocity. Open sides fold nothing, and neither do friction walls: their Coulomb
-// condition acts on the nodes on and beyond the wall, and a block sliding on a friction floor
-// decelerates at mu g that way (test_walls.cpp), while with the slip mirror it decelerated at
-// 0.79 and 1.85 times mu g (mu = 0.2 and 0.5). Both nodes of a
-// pair lie in the same node tile whenever a particle's stencil reaches the beyond node (a
-// stencil base .. base + 3 that holds wall - 1 holds wall + 1 too, and the tile holds 8 nodes from
-// the group's first), so the fold is done per tile, before P2G adds a tile to the grid and after
-// G2P reads one: no other rank's node is involved.
-//
-// What it leaves out. The consistent (PETSc) drag matrix is assembled from the particles'
-// B-spline weights without the fold: the beyond node, now without mass, is not coupled, and its
-// share of D is dropped (the lumped drag folds its coefficient like the mass).
+// The walls' mirror condition on the cubic B-spline grid (WallFold): across every slip and sticky
+// wall, but the inlet's x_low side, the node one cell beyond the wall is folded into its mirror,
+// the node one cell inside. P2G's fold() adds the beyond node's scalars and its vector
+// components times S (the normal one reversed, or all for a sticky wall) into the mirror's and
+// empties it; G2P's mirror() sets it back from the mirror. Both work on one node tile at a time
+// (a tile holds both nodes of every pair its particles reach), so no other rank's nodes are
+// involved. Grid spacing h in m.
+// Why and how: docs/methods/mpm2grid.md, "Step 4: boundary conditions on the grid velocities".
 #include <array>
 #include <cmath>
 #include <cstddef>

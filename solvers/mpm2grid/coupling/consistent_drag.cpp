@@ -231,7 +231,7 @@ void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<D
 
   // D row by row, so that PETSc receives each row once with its columns in increasing order
   // (adding a particle's 4^Dim x 4^Dim block at a time makes PETSc search and shift its rows for
-  // every entry, about a hundred times slower). First, for every coupled node, the soil
+  // every entry, far slower: docs/mpm2grid.md, "Benchmarks"). First, for every coupled node, the soil
   // particles whose stencil holds it (compressed rows, counted and then filled).
   std::vector<Stencil<Dim>> stencils;
   stencils.reserve(soil.size());

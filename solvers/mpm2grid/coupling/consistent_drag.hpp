@@ -31,8 +31,8 @@
 // momentum error), atol 1e-50, zero initial guess; the options database overrides them through
 // the prefix, e.g. -drag_ksp_type, -drag_pc_type, -drag_ksp_rtol, -drag_ksp_max_it. The matrix
 // has block size 2, so -drag_pc_type pbjacobi inverts each node's 2 x 2 block; for dt far above
-// the drag relaxation time it needs fewer CG iterations than Jacobi (0.6 times as many in a 3D
-// test at dt = 1e3 tau).
+// the drag relaxation time it needs fewer CG iterations than Jacobi (docs/mpm2grid.md,
+// "Benchmarks").
 //
 // The header does not include PETSc: its global Vec and Mat would clash with mpm2grid's Eigen
 // Vec<Dim> and Mat<Dim> wherever both namespaces are open. The PETSc objects live in the .cpp.

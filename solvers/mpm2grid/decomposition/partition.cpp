@@ -62,8 +62,9 @@ std::vector<int> partition_blocks(const std::vector<Index<Dim>>& blocks,
       for (std::size_t c = 0; c < species.size(); ++c)
         vwgt[i * species.size() + c] = static_cast<idx_t>(weights[i][static_cast<std::size_t>(species[c])]);
   // 1% imbalance per species: a rank's share above the mean is time every other rank waits in
-  // the halo exchanges (METIS's default 5% measured 4.7% on example 2; blocks of 16 to 64
-  // particles leave METIS room to meet 1%).
+  // the halo exchanges (METIS's default 5% left example 2 nearly that far out of balance:
+  // docs/mpm2grid.md, "Over several ranks"; blocks of 16 to 64 particles leave METIS room to
+  // meet 1%).
   std::vector<real_t> ubvec(static_cast<std::size_t>(ncon), static_cast<real_t>(1.01));
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);

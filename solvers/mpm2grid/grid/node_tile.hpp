@@ -48,8 +48,8 @@ class NodeTile {
   // True when the tile is covering some group, and group g.
   bool covering() const { return covering_; }
   // (Compared as packed keys in registers: comparing the Index arrays made the compiler store
-  // g as two ints and load them back as one 8-byte word, a store-forwarding stall per particle
-  // that cost 6% of the 3D P2G.)
+  // g as two ints and load them back as one 8-byte word, a store-forwarding stall per particle;
+  // docs/mpm2grid.md, "Benchmarks".)
   bool covers(const Index<Dim>& g) const { return covering_ && Grid::key(g) == key_; }
 
   // Covers group g: finds its 2^Dim blocks in the grid (a block that is not active: -1, its

@@ -189,7 +189,7 @@ struct HenckyDruckerPrager {
   ReturnResult<Dim> project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const;
   // project() of N particles at once, out[n] as project(F_trial[n], log_jp[n], saturation[n])
   // alone: their spectra computed together (stretch_spectra in log_stretch.hpp), whose chains of
-  // dependent operations then overlap (with N = 4 and log V staged too: the 3D step about 1.08x faster).
+  // dependent operations then overlap (with N = 4 and log V staged too: docs/mpm2grid.md, "Benchmarks").
   template <int Dim, int N>
   void project_all(const Matrix<Dim>* F_trial, const double* log_jp, const double* saturation,
                    ReturnResult<Dim>* out) const;

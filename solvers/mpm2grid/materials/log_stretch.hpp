@@ -1,9 +1,9 @@
 #pragma once
 // The Hencky strain of a deformation gradient from the eigenvalues of b = F F^T alone, without
 // its eigenvectors: what an elastic soil particle needs (its Kirchhoff stress is a function of
-// log V, V = sqrt(b) the left stretch). In 3D about 2x cheaper than the eigen-solver of
-// left_stretch() (polar_svd.hpp), which plastic returns still use for their principal
-// directions; in 2D it saves left_stretch()'s half-angle square roots.
+// log V, V = sqrt(b) the left stretch). In 3D cheaper than the eigen-solver of left_stretch()
+// (polar_svd.hpp; docs/mpm2grid.md, "Benchmarks"), which plastic returns still use for their
+// principal directions; in 2D it saves left_stretch()'s half-angle square roots.
 //
 // Eigenvalues, descending. 2D: (b00 + b11)/2 + |((b00 - b11)/2, b01)|. 3D: the trigonometric
 // closed form on the deviator of b (Smith 1961): m = tr(b)/3, p = sqrt(tr((b - m I)^2) / 6),
@@ -47,7 +47,7 @@ struct StretchSpectrum {
 
 // The spectra of N deformation gradients, computed stage by stage across them (the entries of b,
 // the square roots, acos, sincos, the logs): each particle's chain of dependent operations is
-// long (about 300 cycles in 3D) and the N chains overlap. Each spectrum gets the same operations
+// long, and the N chains overlap. Each spectrum gets the same operations
 // as alone (stretch_spectrum).
 template <int Dim, int N>
 void stretch_spectra(const Matrix<Dim>* F, StretchSpectrum<Dim>* s) {
@@ -58,8 +58,8 @@ void stretch_spectra(const Matrix<Dim>* F, StretchSpectrum<Dim>* s) {
   double det[N], top[N], middle[N], m[N], p[N], det_dev[N], phi[N];
   for (int n = 0; n < N; ++n) {
     // b = F F^T, exactly symmetric: the upper triangle's row products, mirrored. Here and below
-    // scalar code on the symmetric entries (the 3D step 1.06x faster than with Eigen's products,
-    // squaredNorm and determinant of the full matrices).
+    // scalar code on the symmetric entries (faster than Eigen's products, squaredNorm and
+    // determinant of the full matrices: docs/mpm2grid.md, "Benchmarks").
     Matrix<Dim>& b = s[n].b;
     for (int i = 0; i < Dim; ++i)
       for (int j = i; j < Dim; ++j) {

@@ -55,12 +55,11 @@ RotationSvd<Dim> rotation_svd(const Matrix<Dim>& F) {
 // - 2D: in closed form. With e = (b00 - b11)/2, c = b01, r = |(e, c)|, the larger eigenvalue is
 //   (b00 + b11)/2 + r and its direction at half the angle of (e, c), cos^2 = (r + e)/(2r),
 //   sin^2 = (r - e)/(2r) (the one of r + e, r - e that cancels taken as c^2 over the other); the
-//   smaller stretch from det F = sigma_0 sigma_1. 1.25x on example 2's step against the 2x2
-//   JacobiSVD.
+//   smaller stretch from det F = sigma_0 sigma_1. Faster than the 2x2 JacobiSVD.
 // - 3D: Eigen's SelfAdjointEigenSolver (Householder tridiagonalization and implicit QR; its 3x3
-//   closed form loses up to 1e-2 of the stress where two stretches are equal, as in soil at
-//   rest), 1.2x on the 3D benchmark step against JacobiSVD; the smallest stretch again from
-//   det F.
+//   closed form loses digits of the stress where two stretches are equal, as in soil at rest),
+//   faster than JacobiSVD; the smallest stretch again from det F.
+// (What each choice measured: docs/mpm2grid.md, "Benchmarks".)
 // Both agree with the SVD to round-off, also for equal stretches and for F nearly flat (tested).
 // An inverted F (det F <= 0) has no Hencky strain: a log-stretch is then NaN, as the SVD's
 // negative value gives.

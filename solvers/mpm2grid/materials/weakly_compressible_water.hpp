@@ -55,7 +55,8 @@ struct WeaklyCompressibleWater {
 
   // J^-gamma. For a whole gamma up to 16 (the usual 7) by repeated squaring and one division:
   // within (gamma + 1) / 2 ulp of pow (4 for 7) and cheaper (the pressure is taken once per
-  // water particle and step, and pow was 2% of example 2's step); pow otherwise.
+  // water particle and step, and pow showed in example 2's profile: docs/mpm2grid.md,
+  // "Benchmarks"); pow otherwise.
   double inverse_power(double J) const {
     if (!(gamma <= 16 && gamma == std::floor(gamma))) return std::pow(J, -gamma);
     double result = 1, base = J;

@@ -47,7 +47,8 @@ StepLimit Simulation<Dim>::stable_dt() const {
   if (vmax > 0) consider(s_.cfl * h / vmax, "cfl (velocity)");
   if (water) {
     double c = s_.water.eos.sound_speed(s_.water.density);
-    if (s_.mixture && soil) {  // the wave in the pores also moves the skeleton (see the header)
+    // The wave in the pores also moves the skeleton (docs/methods/mpm2grid.md, "Mixture (optional)").
+    if (s_.mixture && soil) {
       const double n = s_.soil.porosity;
       c *= std::sqrt(1 + s_.water.density * (1 - n) * (1 - n) / (n * s_.soil.density));
     }
@@ -113,7 +114,7 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::spread(const Particles<Dim>& P, const 
 
 // P2G of both species. The water goes first: its node pressures p_i = sum_p w_ip m_p p_p / m_i
 // (0 where there is no water), complete on every active node after the halo sum and copy, give
-// the buoyancy on the soil in the soil's P2G (see the header). With the lumped or consistent
+// the buoyancy on the soil in the soil's P2G (docs/methods/mpm2grid.md, "Buoyancy"). With the lumped or consistent
 // drag, the forces go into the momentum sums times dt (P2GSources::fold_dt); the explicit drag
 // needs the momentum alone. Every rank of a decomposition takes part (the halo exchanges), with
 // or without particles.
@@ -211,7 +212,8 @@ void Simulation<Dim>::add_loads() {
   }
 }
 
-// The mixture's soil volume fraction per node (see the header), on owned and ghost nodes.
+// The mixture's soil volume fraction per node (docs/methods/mpm2grid.md, "Mixture (optional)"), on owned
+// and ghost nodes.
 template <int Dim>
 void Simulation<Dim>::solid_fractions() {
   constexpr double kMost = 0.95;  // keeps 1 - phi_s away from zero where B-splines overshoot
@@ -225,8 +227,8 @@ void Simulation<Dim>::solid_fractions() {
   if (dd_) dd_->copy_to_ghosts(solid_fraction_);
 }
 
-// The mixture's J update of the water (see the header), from the grid velocities of both
-// species at the particles' positions at the step's start.
+// The mixture's J update of the water (docs/methods/mpm2grid.md, "Mixture (optional)"), from the grid
+// velocities of both species at the particles' positions at the step's start.
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::mixture_volume_rates(double dt) {
   // Tile fields: 0 phi_s, 1 .. Dim the volume flux phi_s v_s + (1 - phi_s) v_w.
@@ -278,9 +280,9 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
                                                        [&](std::size_t p, double div) { divergence_[p] = div; });
 }
 
-// The water grid's masses for the saturation (see the header), each divided by the part of its
-// node's weight inside the walls. Only the blocks within two cells of a wall hold nodes with part
-// of their weight outside.
+// The water grid's masses for the saturation (docs/methods/mpm2grid.md, "Continuum model"), each
+// divided by the part of its node's weight inside the walls. Only the blocks within two cells of a
+// wall hold nodes with part of their weight outside.
 template <int Dim>
 void Simulation<Dim>::wall_water_fill() {
   water_fill_ = water_nodes_.mass;
@@ -310,8 +312,8 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
 
 // A species' home blocks before the move (home_before_), and after it which particles it took to
 // another one. Passes of their own: inside the soil's update loop, with the return mapping
-// inlined there, they made the 2-rank step 3.5% slower (example 2); and in the vector clones
-// std::floor is one instruction.
+// inlined there, they slowed the 2-rank step (docs/mpm2grid.md, "Benchmarks"); and in the vector
+// clones std::floor is one instruction.
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::record_homes(const Particles<Dim>& P) {
   home_before_.resize(P.size());
@@ -326,8 +328,8 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mark_moved(const Particles<Dim>& P, st
 }
 
 namespace {
-// The trial deformation gradient (I + dt grad v) F as F + dt (grad v F), in scalar code (the 3D
-// step 1.04x faster than Eigen's product with the sum).
+// The trial deformation gradient (I + dt grad v) F as F + dt (grad v F), in scalar code (faster
+// than Eigen's product with the sum: docs/mpm2grid.md, "Benchmarks").
 template <int Dim>
 Mat<Dim> trial_deformation(const Mat<Dim>& grad_v, const Mat<Dim>& F, double dt) {
   Mat<Dim> out;
@@ -342,8 +344,10 @@ Mat<Dim> trial_deformation(const Mat<Dim>& grad_v, const Mat<Dim>& F, double dt)
 }  // namespace
 
 // The particle updates after G2P, compiled for the baseline only with the return mapping inlined
-// (kernels/vector_clones.hpp, SUITE_INLINE_CALLS): the 2D step 1.04x faster. (Updating each particle
-// inside the G2P sweep instead, its gradient never stored, measured 10% slower in 2D.)
+// (kernels/vector_clones.hpp, SUITE_INLINE_CALLS), which makes the step faster. (Updating each
+// particle inside the G2P sweep instead, its gradient never stored, was slower: the return
+// mapping's call inside the sweep's loop costs more than the stored gradient. Both in
+// docs/mpm2grid.md, "Benchmarks".)
 template <int Dim>
 SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   // Over several ranks, which particles the move takes to another home block (left_home_):

@@ -1,55 +1,13 @@
 #pragma once
-// One two-species (soil + water) MPM model and its time step (docs/methods/mpm2grid.md, "Step n -> n+1"):
-//   1. blocks of the sparse grid from both species' stencils;
-//   2. P2G per species, the water first: mass, APIC momentum, internal force from the Kirchhoff
-//      stresses (soil: Hencky; water: weakly compressible), the soil's drag coefficients c_E V_p
-//      and its buoyancy from the water's node pressures; gravity;
-//   3. the drag-coupled grid velocity solve (coupling/drag_solve.hpp);
-//   4. wall conditions on both grids (across slip and sticky walls the grid is also a mirror of
-//      itself: P2G folds the nodes one cell beyond into those one cell inside, G2P reads them
-//      back, boundary/wall_fold.hpp);
-//   5. G2P per species, positions, F_E (soil, then the Drucker-Prager return mapping with the
-//      cohesion of the particle's saturation, sampled in the soil's G2P) and J (water);
-//   6. particles that left through an open side are removed and booked as outflow; the inlet
-//      (boundary/inlet.hpp), if any, emits the water layers due (after setting the inflow
-//      velocity on its face's water nodes in step 4).
-// Saturation: the water grid's volume fraction phi_i = m_w,i / (rho_w h^Dim I_i), and a soil
-// particle's S = clamp(sum_i w_ip phi_i / n, 0, 1), n the soil's porosity: pores full of water
-// give S = 1. w_ip at the step's start, the positions the water grid was built from. I_i is the
-// part of node i's weight inside the walls (WallFold::inside_fraction; 1 two cells or more from
-// every wall): water filling the pores up to a wall gives the wall's nodes only that part of an
-// interior node's mass (the wall node half), and without it soil with its pores full (the
-// mixture's pore water) read S down to 0.43 in a corner of two walls and kept the rest of its
-// cohesion.
-// Over several ranks (a communicator of more than one rank), each rank steps the particles of
-// the grid blocks it owns, with a reverse halo sum after each species' P2G, one forward halo
-// copy after the grid solve and the particles' migration to their new owners (decomposition/)
-// (and, with buoyancy, a forward copy of the water's node pressures); the sums over
-// particles (masses, energies, the outflow) are then over all ranks.
-// Buoyancy (docs/methods/mpm2grid.md, "Buoyancy"; on unless a scene turns it off): the soil skeleton
-// feels the water's pressure field, the Archimedes force -(1 - n) V_s grad p on each soil
-// particle, with grad p = sum_i p_i grad w_ip from the water grid's node pressures
-// p_i = sum_p w_ip m_p p_p / m_i (0 where there is no water). Submerged, the skeleton then
-// carries the effective stress (gamma_sat - gamma_w) z and the pore water the hydrostatic
-// pressure. The water gets no reaction: in this two-grid model the water does not see the
-// solid's volume (it flows through the soil at its own density, and a soil region filled with
-// water holds a full water particle at each lattice point, a soil region's saturated: true), so its own
-// pressure already balances its weight; the soil's weight less its buoyancy rests on the walls
-// through the skeleton. The exchange between the species that conserves their total momentum is
-// the drag.
-// Mixture (a scene's `mixture: true`; off by default): the pore water's volume balance counts the
-// soil's, as in Biot's theory with incompressible grains: a water particle's J changes at the
-// rate div(phi_s v_s + (1 - phi_s) v_w) / (1 - phi_s) instead of div v_w, phi_s the soil's
-// volume fraction where the particle is (from the soil grid's nodes, phi_s,i = (1 - n) m_s,i /
-// (rho_s h^Dim) divided by the part of the node's weight inside the walls). Compressing the
-// skeleton then compresses its pore water: an undrained load goes to the pore pressure, which
-// drains through the drag (Terzaghi's consolidation). Pore water is seeded at its partial
-// volume n V and mass n rho_w V, so its force is -n grad p and, with the buoyancy, the mixture
-// feels -grad p. Where there is no soil, phi_s = 0 and the water is the plain weakly
-// compressible water. The water wave then also moves the skeleton, and the water wave speed the
-// time step uses is c_w sqrt(1 + rho_w (1 - n)^2 / (n rho_s)).
-// Loads: soil particles may carry an external force (a surcharge on a region's upper surface),
-// applied in full from t = load_ramp on, growing linearly from zero before.
+// One two-species (soil + water) MPM model and its time step: Simulation<Dim> (Dim = 2 or 3) with
+// its settings, the outflow record and what limits dt. SI units (m, s, kg, Pa); in 2D masses,
+// volumes and energies are per metre of width. step() rebuilds the sparse grid, runs P2G per
+// species (water first), the drag-coupled grid solve (coupling/), the wall and inlet conditions
+// with the walls' mirror fold (boundary/), G2P with the particle updates, and the outflow and
+// inlet particles. Over a communicator of more than one rank each rank steps the particles of
+// the grid blocks it owns (decomposition/); members marked COLLECTIVE must then be called on
+// every rank, and sums over particles (masses, energies, the outflow) are over all ranks.
+// The model and its step: docs/methods/mpm2grid.md, "Continuum model" and "Step n -> n+1".
 #include <memory>
 #include <optional>
 #include <string>

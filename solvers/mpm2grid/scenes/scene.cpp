@@ -199,6 +199,10 @@ Scene<Dim> read_scene(const config::Config& cfg) {
   sim.drag = drag == "lumped" ? DragScheme::lumped : drag == "consistent" ? DragScheme::consistent
                                                                           : DragScheme::explicit_euler;
   sc.petsc_options = root.get<std::string>("petsc_options", "");
+  if (!sc.petsc_options.empty() && sim.drag != DragScheme::consistent)
+    root.reject("petsc_options", fmt::format("only the consistent drag solves with PETSc, and this scene's drag is {}; "
+                                             "set drag: consistent or drop petsc_options",
+                                             drag));
   const auto time = root.section("time");
   sc.time.end = time.quantity("end", "s", Range::positive());
   sim.cfl = time.number("cfl", 0.4, Range{0.0, 1.0, true, true});
@@ -213,21 +217,6 @@ Scene<Dim> read_scene(const config::Config& cfg) {
   sc.checkpoints = checkpoint::ScheduleSettings::read(root.section_or_empty("checkpoint"), {1000, 1800.0, 2});
   cfg.finish();
   return sc;
-}
-
-template <int Dim>
-std::vector<double> Scene<Dim>::fingerprint() const {
-  const auto& s = simulation;
-  std::vector<double> f{double(Dim), s.h, double(particles_per_cell), s.gravity[1], s.cfl, s.dt_max,
-                        time.end, time.series, time.output, s.water.density, s.water.eos.bulk_modulus,
-                        s.water.eos.gamma, s.soil.density, s.soil.porosity, s.soil.conductivity,
-                        double(static_cast<int>(s.drag)), double(s.decomposition.check_every),
-                        s.decomposition.imbalance, double(s.buoyancy), hydrostatic_surface.value_or(-1e300),
-                        double(s.mixture), s.load_ramp};
-  for (const auto& r : soil_regions) f.insert(f.end(), {double(r.saturated), r.surcharge});
-  for (int d = 0; d < Dim; ++d) f.insert(f.end(), {s.walls.lo[d], s.walls.hi[d]});
-  if (s.inlet) f.insert(f.end(), {s.inlet->height, s.inlet->discharge(0), s.inlet->discharge.cumulative(time.end)});
-  return f;
 }
 
 template <int Dim>

@@ -166,10 +166,10 @@ FieldSample<Dim> contract(const StencilRows<Dim>& s, const Four& P, const Four* 
 // components along its Gradient axes (the others are left 0; a divergence needs one per velocity
 // component). The sums over the rows are vector values in fully unrolled loops, so that the
 // compiler keeps them in registers (as arrays updated through memory they made a chain of stores
-// and reloads per row: 1.2x on the 3D step). In 3D the sums are factored by axis, one field after
-// the other (8 sums in registers; 1.13x on the 3D step against 5 per row, all fields together,
-// whose 15 sums spilled); in 2D the fields go through the rows together, sharing each row's
-// weights.
+// and reloads per row, which slowed the step). In 3D the sums are factored by axis, one field
+// after the other (8 sums in registers, faster than 5 per row with all fields together, whose 15
+// sums spilled); in 2D the fields go through the rows together, sharing each row's weights.
+// (The measurements: docs/mpm2grid.md, "Benchmarks".)
 template <bool Moment, Axes... Gradient, int Dim, int Fields>
 std::array<FieldSample<Dim>, sizeof...(Gradient)> sample_fields(const NodeTile<Dim, Fields>& tile, int f0,
                                                                 const StencilRows<Dim>& s, int first) {

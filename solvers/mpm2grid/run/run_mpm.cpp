@@ -1,4 +1,4 @@
-#include "solvers/mpm2grid/io/run_mpm.hpp"
+#include "solvers/mpm2grid/run/run_mpm.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,12 +12,14 @@
 
 #include "core/errors.hpp"
 #include "core/checkpoint/checkpoint.hpp"
+#include "core/checkpoint/scene_match.hpp"
 #include "core/checkpoint/schedule.hpp"
 #include "core/io/csv_series.hpp"
 #include "core/io/output_dir.hpp"
 #include "core/io/xdmf.hpp"
 #include "core/log/progress.hpp"
 #include "core/mpi/collective_try.hpp"
+#include "core/run/memory_check.hpp"
 #include "core/run/phase_timers.hpp"
 #include "core/run/run_record.hpp"
 #include "core/petsc/petsc_session.hpp"
@@ -26,6 +28,7 @@
 #include "solvers/mpm2grid/io/dam_measures.hpp"
 #include "solvers/mpm2grid/io/particle_output.hpp"
 #include "solvers/mpm2grid/model/blow_up.hpp"
+#include "solvers/mpm2grid/scenes/memory_estimate.hpp"
 #include "solvers/mpm2grid/scenes/scene.hpp"
 
 namespace suite::mpm2grid {
@@ -67,8 +70,14 @@ double water_front(const Simulation<Dim>& sim, double half_spacing) {
 }
 
 constexpr const char* kSolver = "mpm2grid";
-constexpr long long kCheckpointFormat = 5;  // 2: inlet state, outlet record, initial soil volume; 3: block owners;
-                                            // 4: particle loads (surcharges); 5: particle ids
+constexpr long long kCheckpointFormat = 6;  // 2: inlet state, outlet record, initial soil volume; 3: block owners;
+                                            // 4: particle loads (surcharges); 5: particle ids; 6: the scene's keys
+
+// The scene keys a restart may change: when to stop, how often to sample and write, checkpoint
+// settings and the load-balancing knobs (the partition changes sums only at round-off). Every
+// other key is the checkpoint's physics and must stay. A later time.end extends a run.
+const std::vector<std::string> kMayChangeOnRestart{"time.end", "time.max_steps", "time.series", "time.output",
+                                                   "checkpoint", "decomposition"};
 
 template <int Dim>
 class MpmRun {
@@ -76,6 +85,7 @@ class MpmRun {
   MpmRun(const mpi::Comm& comm, const config::Config& cfg, const RunOptions& o, Logger& log)
       : comm_(comm),
         scene_(read_scene<Dim>(cfg)),
+        scene_keys_(cfg),
         log_(log),
         record_(comm, kSolver, o.argv),
         petsc_(petsc_session(comm, scene_)),
@@ -92,6 +102,14 @@ class MpmRun {
   }
 
   int run(const std::optional<std::string>& restart) {
+    const auto memory = estimate_memory(scene_);
+    const double bytes = memory.bytes + memory.bytes_per_rank * comm_.size();
+    record_.extra()["memory_estimate"] = {{"bytes", bytes},
+                                          {"soil_particles", memory.soil_particles},
+                                          {"water_particles", memory.water_particles},
+                                          {"grid_nodes", memory.nodes}};
+    require_memory(comm_, bytes, fmt::format("scene {}", scene_.name), memory.breakdown(),
+                   "coarsen grid.spacing, lower grid.particles_per_cell or run on more nodes");
     if (restart) {
       resume(*restart);
     } else {
@@ -130,7 +148,7 @@ class MpmRun {
                 "m/s; layer mass {} kg",
                 inlet->rows(), inlet->section_height(), inlet->settings().height, inlet->settings().discharge(0),
                 inlet->velocity(0), inlet->layer_mass());
-    SignalWatcher signals;
+    SignalWatcher signals(out_);
     checkpoint::Schedule schedule(scene_.checkpoints);
     ProgressLine progress(log_, sim_.time(), scene_.time.end);
     const long long first_step = sim_.steps();
@@ -154,6 +172,8 @@ class MpmRun {
         return 0;
       }
     }
+    // The final state, so that a later time.end can extend the run (--restart latest).
+    if (last_checkpoint_step_ != sim_.steps()) write_checkpoint();
     finish();
     return 0;
   }
@@ -171,6 +191,13 @@ class MpmRun {
       sim_.step(dt);
     }
     drag_iterations_ = std::max(drag_iterations_, static_cast<long long>(sim_.drag_stats().iterations));
+    // After the first solve every solver has read its options: one nothing read is a mistake.
+    if (petsc_ && sim_.steps() == first_step_ + 1)
+      if (const auto unused = petsc_->unused_options(); !unused.empty())
+        throw InputError(fmt::format("petsc_options: PETSc used no option named {}; check the spelling (the "
+                                     "consistent drag's options start with -drag_, e.g. -drag_ksp_rtol 1e-10 "
+                                     "-drag_pc_type jacobi)",
+                                     fmt::join(unused, ", ")));
     last_dt_ = dt;
     p_.smallest_dt = std::min(p_.smallest_dt, dt);
     const double inlet_velocity = sim_.inlet() ? sim_.inlet()->velocity(sim_.time()) : 0.0;
@@ -291,11 +318,12 @@ class MpmRun {
     ScopedPhase phase(timers_, "checkpoint");
     const auto path = checkpoint::file_name(checkpoints_, "checkpoint", sim_.steps());
     checkpoint::Writer w(comm_, path, {kSolver, kCheckpointFormat, sim_.steps(), sim_.time(), "", 0});
-    w.write<double>("scene", scene_.fingerprint());
+    w.write<unsigned char>("scene_keys", scene_keys_.bytes());
     write_state(w, sim_, p_);
     w.commit();
     if (comm_.is_root()) checkpoint::prune(checkpoints_, "checkpoint", scene_.checkpoints.keep);
     record_.write(out_ / "run.json", timers_, fmt::format("running: checkpoint at step {}", sim_.steps()));
+    last_checkpoint_step_ = sim_.steps();
     log_.info("checkpoint {} written", path.filename().string());
   }
 
@@ -303,11 +331,15 @@ class MpmRun {
   void resume(const std::string& which) {
     const auto path = checkpoint::restart_path(comm_, checkpoints_, "checkpoint", which);
     checkpoint::Reader r(comm_, path, kSolver, kCheckpointFormat);
-    if (r.read<double>("scene") != scene_.fingerprint())
-      throw InputError(fmt::format("checkpoint '{}' was written for another scene (grid, materials, walls or time "
-                                   "settings differ); restart with the scene it was written with",
-                                   path.string()));
+    const auto where = fmt::format("checkpoint '{}'", path.string());
+    checkpoint::SceneRecord::from_bytes(r.read<unsigned char>("scene_keys"), where)
+        .require_same(scene_keys_, kMayChangeOnRestart, where);
+    if (!(scene_.time.end > r.header().time * (1 + 1e-12)))
+      throw InputError(fmt::format("time.end = {} s: {} is at t = {} s already; give a later time.end to extend the "
+                                   "run",
+                                   scene_.time.end, where, r.header().time));
     read_state(r, sim_, p_);
+    last_checkpoint_step_ = sim_.steps();
     record_.extra()["restarted_from"] = path.string();
     // later ones belong to the run being replaced
     checkpoint::discard_after(comm_, checkpoints_, "checkpoint", sim_.steps(), log_);
@@ -391,6 +423,7 @@ class MpmRun {
 
   mpi::Comm comm_;
   Scene<Dim> scene_;
+  checkpoint::SceneRecord scene_keys_;  // the scene as read, kept in every checkpoint
   Logger& log_;
   RunRecord record_;
   std::unique_ptr<PetscSession> petsc_;  // before sim_: the drag solver's objects go first
@@ -398,8 +431,9 @@ class MpmRun {
   Simulation<Dim> sim_;
   std::filesystem::path out_, checkpoints_;
   double half_spacing_ = 0, last_dt_ = 0;
-  long long drag_iterations_ = 0;
-  long long first_step_ = 0;  // the step this run (or its restart) began at  // most KSP iterations of one consistent drag solve in this run
+  long long drag_iterations_ = 0;  // most KSP iterations of one consistent drag solve in this run
+  long long first_step_ = 0;            // the step this run (or its restart) began at
+  long long last_checkpoint_step_ = -1;  // the step of the newest checkpoint of this run
   RunProgress p_;
   std::optional<io::CsvSeries> csv_;    // rank 0 only
   std::optional<io::CsvSeries> profiles_;  // rank 0 only

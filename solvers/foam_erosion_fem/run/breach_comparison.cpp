@@ -1,4 +1,4 @@
-#include "solvers/foam_erosion_fem/io/breach_comparison.hpp"
+#include "solvers/foam_erosion_fem/run/breach_comparison.hpp"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 
 #include "core/errors.hpp"
 #include "core/io/csv_series.hpp"
-#include "solvers/breach/io/run_breach.hpp"
+#include "solvers/breach/run/run_breach.hpp"
 #include "solvers/breach/model/simulate.hpp"
 
 namespace suite::foam_erosion {

@@ -1,8 +1,8 @@
-#include "solvers/breach/io/dakota_driver.hpp"
+#include "solvers/breach/run/dakota_driver.hpp"
 
 #include "core/dakota/analysis_driver.hpp"
 #include "core/mpi/comm.hpp"
-#include "solvers/breach/io/run_breach.hpp"
+#include "solvers/breach/run/run_breach.hpp"
 #include "solvers/breach/model/simulate.hpp"
 
 namespace suite::breach {

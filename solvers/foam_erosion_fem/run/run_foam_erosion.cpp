@@ -1,21 +1,26 @@
-#include "solvers/foam_erosion_fem/io/run_foam_erosion.hpp"
+#include "solvers/foam_erosion_fem/run/run_foam_erosion.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <optional>
+#include <sstream>
 
+#include "core/checkpoint/scene_match.hpp"
+#include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 #include "core/io/output_dir.hpp"
 #include "core/mpi/comm.hpp"
 #include "core/run/phase_timers.hpp"
 #include "core/run/run_record.hpp"
 #include "core/run/signals.hpp"
 #include "solvers/foam_erosion_fem/coupling/discharge.hpp"
-#include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
-#include "solvers/foam_erosion_fem/io/breach_comparison.hpp"
-#include "solvers/foam_erosion_fem/io/coupled_loop.hpp"
-#include "solvers/foam_erosion_fem/io/prepare_case.hpp"
+#include "solvers/foam_erosion_fem/io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/run/breach_comparison.hpp"
+#include "solvers/foam_erosion_fem/run/coupled_loop.hpp"
+#include "solvers/foam_erosion_fem/run/prepare_case.hpp"
 
 namespace suite::foam_erosion {
 
@@ -42,11 +47,39 @@ void write_discharge_outputs(const std::filesystem::path& case_dir, const std::f
   }
 }
 
+// The scene a coupled run was started with, kept beside state.json for its restarts.
+constexpr const char* kSceneKeysFile = "scene_keys.txt";
+
+// A restart continues the run in `out` only with the scene it was started with; a later
+// time.end extends it. InputError naming every key that differs otherwise.
+void check_restart_scene(const FoamScene& scene, const checkpoint::SceneRecord& now, const std::filesystem::path& out,
+                         const LoopState& state) {
+  const auto file = out / kSceneKeysFile;
+  std::ifstream in(file);
+  if (!in)
+    throw InputError(fmt::format("{}: missing, so the scene of the run in {} is unknown; start again without "
+                                 "--restart",
+                                 file.string(), out.string()));
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto where = fmt::format("the coupled-loop state in {}", out.string());
+  const auto saved = checkpoint::SceneRecord::from_text(text.str(), file.string());
+  saved.require_same(now, {"time.end"}, where);
+  if (!(scene.time.end > state.time * (1 + 1e-12)))
+    throw InputError(fmt::format("time.end = {} s: {} is at t = {} s already; give a later time.end to extend the run",
+                                 scene.time.end, where, state.time));
+  if (scene.inflow.kind() == breach::Hydrograph::Kind::sine && saved.keys().at("time.end") != now.keys().at("time.end"))
+    throw InputError(fmt::format("time.end: the case's inlet table samples the sine inflow only up to the first run's "
+                                 "end ({}), so {} cannot be extended; start a new run with the longer time.end",
+                                 saved.keys().at("time.end"), where));
+}
+
 }  // namespace
 
 int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log) {
   const auto scene = FoamScene::read(cfg.root());
   cfg.finish();
+  const checkpoint::SceneRecord scene_keys(cfg);
   const mpi::Comm self(MPI_COMM_SELF);
   const auto out = io::prepare_output_dir(self, o.out);
   cfg.write_effective(out / "effective_config.yaml");
@@ -55,7 +88,7 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
   PhaseTimers timers;
   // SIGTERM/SIGINT (Slurm's time limit, scancel, Ctrl-C) stop interFoam and end the run with the
   // outputs of the steps done; state.json is written after every step, so SIGUSR1 has nothing to add.
-  SignalWatcher signals;
+  SignalWatcher signals(out);
   bool stop = false;
   RunnerOptions runner_options;
   runner_options.stop_requested = [&] {
@@ -76,11 +109,13 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
     std::optional<LoopState> resume;
     if (o.restart) {
       resume = LoopState::read(out / "state.json");
+      check_restart_scene(scene, scene_keys, out, *resume);
       prepared = resume_case(scene, runner.case_dir(), *resume);
       log.info("restarting from {}: step {} at t = {} s, {} re-meshes so far", (out / "state.json").string(),
                resume->step, resume->time, resume->remeshes);
     } else {
       for (const char* stale : {"case", "cases", "state.json"}) std::filesystem::remove_all(out / stale);
+      io::write_file_atomic(out / kSceneKeysFile, scene_keys.text());
       ScopedPhase phase(timers, "case");
       prepared = prepare_case(scene, runner, scene.time.end);
     }

@@ -1,4 +1,4 @@
-#include "solvers/breach/io/run_breach.hpp"
+#include "solvers/breach/run/run_breach.hpp"
 
 #include <fmt/format.h>
 

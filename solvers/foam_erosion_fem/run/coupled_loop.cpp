@@ -1,4 +1,4 @@
-#include "solvers/foam_erosion_fem/io/coupled_loop.hpp"
+#include "solvers/foam_erosion_fem/run/coupled_loop.hpp"
 
 #include <fmt/format.h>
 
@@ -13,7 +13,7 @@
 #include "solvers/foam_erosion_fem/coupling/remesh.hpp"
 #include "solvers/foam_erosion_fem/coupling/wall_shear.hpp"
 #include "solvers/foam_erosion_fem/erosion/fem_erosion.hpp"
-#include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/io/foam_reader.hpp"
 
 namespace suite::foam_erosion {
 

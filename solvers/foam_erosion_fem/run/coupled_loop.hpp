@@ -13,7 +13,7 @@
 #include "core/log/logger.hpp"
 #include "core/run/phase_timers.hpp"
 #include "solvers/foam_erosion_fem/coupling/loop_state.hpp"
-#include "solvers/foam_erosion_fem/io/prepare_case.hpp"
+#include "solvers/foam_erosion_fem/run/prepare_case.hpp"
 
 namespace suite::foam_erosion {
 

@@ -1,4 +1,4 @@
-#include "solvers/foam_erosion_fem/io/prepare_case.hpp"
+#include "solvers/foam_erosion_fem/run/prepare_case.hpp"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 
 #include "solvers/foam_erosion_fem/case/case_writer.hpp"
 #include "solvers/foam_erosion_fem/case/dam_cells.hpp"
-#include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/io/foam_reader.hpp"
 
 namespace suite::foam_erosion {
 

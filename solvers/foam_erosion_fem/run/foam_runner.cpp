@@ -1,4 +1,4 @@
-#include "solvers/foam_erosion_fem/runner/foam_runner.hpp"
+#include "solvers/foam_erosion_fem/run/foam_runner.hpp"
 
 #include <fcntl.h>
 #include <signal.h>

@@ -1,4 +1,4 @@
-#include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/io/foam_reader.hpp"
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>

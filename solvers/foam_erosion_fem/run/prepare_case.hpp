@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "solvers/foam_erosion_fem/case/section_layout.hpp"
-#include "solvers/foam_erosion_fem/runner/foam_runner.hpp"
+#include "solvers/foam_erosion_fem/run/foam_runner.hpp"
 #include "solvers/foam_erosion_fem/scenes/foam_scene.hpp"
 
 namespace suite::foam_erosion {

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# A checkpoint restarts only the scene it was written for, and a later time.end extends a run.
+# 1. Table 3.4 example 2 (coarse) runs to 1 s; it ends with a checkpoint of its final state.
+# 2. Restarts that change the physics are refused with exit 2, one line naming the key and both
+#    values: soil E, nu, friction angle, cohesion, the dam's geometry, a wall's kind, the wall
+#    friction, the grid, and a different scene file (example 5, another cohesion).
+# 3. A restart with the same time.end is refused (nothing left to run).
+# 4. A restart with time.end = 2 s extends the run, and its outputs equal byte for byte those of
+#    a run made to 2 s in one go (the 1 s end falls on an output time, so the steps are the same).
+#   restart_scene_checks.sh WORK_DIR EXE SCENES_DIR
+set -euo pipefail
+work=$1 exe=$2 scenes=$3
+here=$(cd "$(dirname "$0")" && pwd)
+expect=$here/../support/expect_input_error.sh
+rm -rf "$work" && mkdir -p "$work"
+scene=("$scenes/table_3_4_example2.yaml" "grid.spacing=0.5 m" time.output=0.5s time.series=0.05s)
+"$exe" "${scene[@]}" time.end=1s --out "$work/extended" --log-level warn
+grep -q '"status": "completed"' "$work/extended/run.json"
+
+refused() {  # refused KEY OVERRIDE...: a restart with the overrides names KEY and is refused
+  local key=$1; shift
+  "$expect" "was written for another scene|$key" "$exe" "${scene[@]}" time.end=1s "$@" \
+    --out "$work/extended" --restart latest
+  echo "refused as it should: $*"
+}
+refused soil.young "soil.young=20 MPa"
+refused soil.poisson "soil.poisson=0.25"
+refused soil.friction_angle "soil.friction_angle=30 deg"
+refused soil.cohesion_shift "soil.cohesion_shift=0.004"
+refused "soil.regions[0].trapezoid.height" "soil.regions.0.trapezoid.height=3 m"
+refused walls.y_low "walls.y_low=sticky"
+refused wall_friction "wall_friction=0.5"
+refused grid.spacing "grid.spacing=0.25 m"
+"$expect" "was written for another scene|soil.cohesion_shift|'0.008' there, '0.002' here" \
+  "$exe" "$scenes/table_3_4_example5.yaml" "grid.spacing=0.5 m" time.output=0.5s time.series=0.05s time.end=1s \
+  --out "$work/extended" --restart latest
+"$expect" "time.end|give a later time.end" "$exe" "${scene[@]}" time.end=1s --out "$work/extended" --restart latest
+
+"$exe" "${scene[@]}" time.end=2s --out "$work/extended" --restart latest --log-level warn
+grep -q '"status": "completed"' "$work/extended/run.json"
+"$exe" "${scene[@]}" time.end=2s --out "$work/straight" --log-level warn
+"$here/same_outputs.sh" "$work/straight" "$work/extended"
+echo "refused every change of the physics; extended from 1 s to 2 s identical to a run made in one go"
