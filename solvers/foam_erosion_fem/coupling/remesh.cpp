@@ -4,7 +4,7 @@
 #include <set>
 
 #include "solvers/foam_erosion_fem/case/case_writer.hpp"
-#include "solvers/foam_erosion_fem/foam_io/foam_reader.hpp"
+#include "solvers/foam_erosion_fem/io/foam_reader.hpp"
 
 namespace suite::foam_erosion {
 
@@ -58,10 +58,22 @@ MeshedSection remesh_case(const FoamScene& scene, const SectionLayout& layout, c
   fs::rename(case_dir / "0", case_dir / time_name);
   std::set<fs::path> initial;
   for (const auto& f : fs::directory_iterator(case_dir / time_name)) initial.insert(f.path().filename());
+  // mapFields maps every field of the source time, and gives the derived ones (p,
+  // wallShearStress) whatever was in memory in the cells it cannot map: writing those, OpenFOAM
+  // v1912 can trip its floating-point trap (SIGFPE), depending on the memory it was given (seen
+  // with one process environment and not another). Only the fields the new case starts from are
+  // mapped: the others wait outside the archived case and go back after.
+  const fs::path source = archive_dir / time_name, aside = archive_dir.string() + ".derived_fields";
+  fs::remove_all(aside);
+  fs::create_directories(aside);
+  for (const auto& f : fs::directory_iterator(source))
+    if (f.is_regular_file() && !initial.count(f.path().filename())) fs::rename(f.path(), aside / f.path().filename());
   runs.push_back(runner.run("mapFields", {archive_dir.string(), "-consistent", "-sourceTime", "latestTime",
                                           "-mapMethod", "mapNearest"}));
-  // mapFields also creates the source's derived fields (p, wallShearStress), with whatever was in
-  // memory in the cells it could not map; the solver recomputes them, decomposePar would choke.
+  for (const auto& f : fs::directory_iterator(aside)) fs::rename(f.path(), source / f.path().filename());
+  fs::remove(aside);
+  // Anything mapFields made beyond the initial fields: the solver recomputes it, decomposePar
+  // would choke on it.
   for (const auto& f : fs::directory_iterator(case_dir / time_name))
     if (!initial.count(f.path().filename())) fs::remove_all(f.path());
   fill_opened_cells(old_mesh, mesh, archive_dir / time_name / "alpha.water", case_dir / time_name / "alpha.water");
