@@ -9,13 +9,13 @@
 #include <numbers>
 
 #include "core/config/config.hpp"
-#include "solvers/breach/hydrology/hydrograph.hpp"
+#include "core/tables/hydrograph.hpp"
 #include "solvers/breach/hydrology/stage_storage.hpp"
 #include "tests/support/test_dirs.hpp"
 
 namespace {
 
-using suite::breach::Hydrograph;
+using suite::Hydrograph;
 using suite::breach::StageStorage;
 using suite::config::Config;
 using suite::testing::input_error_of;
@@ -136,7 +136,7 @@ TEST(StageStorage, TableInterpolatesExtrapolatesAndInverts) {
   auto bad = Config::from_string("storage:\n  type: table\n  table: [[0 m, 0 m^3], [1 m, 0 m^3]]\n", "b.yaml");
   EXPECT_NE(input_error_of([&] {
               StageStorage::read(bad.root().section("storage"));
-            }).find("levels and volumes must both increase"),
+            }).find("volumes must increase, but row 2 (0 m^3) does not exceed row 1 (0 m^3)"),
             std::string::npos);
 }
 

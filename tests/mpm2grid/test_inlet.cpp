@@ -42,7 +42,7 @@ SimulationSettings<Dim> channel(double h, double length, double height, double d
 }
 
 template <int Dim>
-InletSettings<Dim> inlet_of(const SimulationSettings<Dim>& s, double spacing, double height, breach::Hydrograph q) {
+InletSettings<Dim> inlet_of(const SimulationSettings<Dim>& s, double spacing, double height, Hydrograph q) {
   InletSettings<Dim> in;
   in.height = height, in.spacing = spacing, in.density = kDensity;
   in.lo = s.walls.lo, in.hi = s.walls.hi;
@@ -64,7 +64,7 @@ TYPED_TEST(InletSteps, ConstantInflowEmitsRhoVHtWithinOneLayerAndMassBalanceClos
   // with an initial pool, so that water also leaves through the outlet (3D on a coarser grid).
   const double h = Dim == 2 ? 0.05 : 0.1, spacing = h / 2, H = 0.5, v = 2.0;
   auto s = channel<Dim>(h, 1.5, 2.0, 0.1, 9.81);
-  s.inlet = inlet_of(s, spacing, H, breach::Hydrograph::constant(v * H));
+  s.inlet = inlet_of(s, spacing, H, Hydrograph::constant(v * H));
   Simulation<Dim> sim(s);
   // The pool: 0.5 m x 0.25 m of water at x in [0.5, 1).
   {
@@ -118,7 +118,7 @@ TYPED_TEST(InletSteps, EmittedLayersCarryTheInletVelocityOnTheSeedingLattice) {
   // pressure), so every emitted particle keeps v and stays on a lattice of spacing s in x.
   const double h = 0.1, spacing = h / 2, H = 0.3, v = 1.5;
   auto s = channel<Dim>(h, 5.0, 1.0, 0.2, 0.0);
-  s.inlet = inlet_of(s, spacing, H, breach::Hydrograph::constant(v * H));
+  s.inlet = inlet_of(s, spacing, H, Hydrograph::constant(v * H));
   Simulation<Dim> sim(s);
   for (int i = 0; i < 300; ++i) sim.step(1e-3);
   const auto& w = sim.water();
@@ -141,7 +141,7 @@ TYPED_TEST(InletSteps, OutflowDischargeEqualsInflowInAFrictionlessChannel) {
   // discharge over an interval T is q within one layer's volume over T (layers leave whole).
   const double h = 0.1, spacing = h / 2, H = 0.3, v = 2.0, q = v * H, T = 0.5;
   auto s = channel<Dim>(h, 1.0, 1.0, 0.1, 0.0);
-  s.inlet = inlet_of(s, spacing, H, breach::Hydrograph::constant(q));
+  s.inlet = inlet_of(s, spacing, H, Hydrograph::constant(q));
   Simulation<Dim> sim(s);
   OutletRecord record;
   const double dt = 1e-3;

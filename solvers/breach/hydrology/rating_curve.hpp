@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/config/config.hpp"
+#include "core/tables/piecewise_linear.hpp"
 
 namespace suite::breach {
 
@@ -16,11 +17,11 @@ class RatingCurve {
   static RatingCurve read(const config::Section& section);
 
   double operator()(double level) const;  // m^3/s
-  bool empty() const { return levels_.empty(); }
-  double crest() const { return levels_.front(); }  // the level where the outflow starts
+  bool empty() const { return table_.rows() == 0; }
+  double crest() const { return table_.x().front(); }  // the level where the outflow starts
 
  private:
-  std::vector<double> levels_, discharges_;
+  PiecewiseLinear table_;  // (level, discharge)
 };
 
 }  // namespace suite::breach

@@ -1,7 +1,5 @@
 #include "solvers/breach/hydrology/stage_storage.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -18,20 +16,12 @@ StageStorage StageStorage::power_law(double alpha, double bottom, double exponen
 }
 
 StageStorage StageStorage::table(std::vector<double> levels, std::vector<double> volumes) {
-  if (levels.size() < 2 || levels.size() != volumes.size())
-    throw InputError("a stage-storage table needs at least two rows of [level, volume]");
-  for (std::size_t i = 1; i < levels.size(); ++i) {
-    if (!(levels[i] > levels[i - 1]) || !(volumes[i] > volumes[i - 1]))
-      throw InputError(
-          fmt::format("stage-storage table: levels and volumes must both increase, but row {} "
-                      "([{} m, {} m^3]) does not exceed row {} ([{} m, {} m^3])",
-                      i + 1, levels[i], volumes[i], i, levels[i - 1], volumes[i - 1]));
-  }
-  if (volumes.front() < 0) throw InputError("stage-storage table: the first volume must be >= 0");
   StageStorage s;
   s.is_table_ = true;
-  s.levels_ = std::move(levels);
-  s.volumes_ = std::move(volumes);
+  s.table_ = PiecewiseLinear(std::move(levels), std::move(volumes),
+                             {"stage-storage table", "level", "m", "volume", "m^3"},
+                             PiecewiseLinear::Values::increasing);
+  if (s.table_.y().front() < 0) throw InputError("stage-storage table: the first volume must be >= 0");
   return s;
 }
 
@@ -54,30 +44,24 @@ StageStorage StageStorage::read(const config::Section& sec) {
 }
 
 double StageStorage::bottom() const {
-  return is_table_ ? levels_.front() - volumes_.front() / area(levels_.front()) : bottom_;
+  return is_table_ ? table_.x().front() - table_.y().front() / table_.slope(table_.x().front()) : bottom_;
 }
 
+// A table's storage: linear between rows, the last area continued above the last row, the first
+// area continued below the first row down to zero storage.
 double StageStorage::volume(double h) const {
   if (!is_table_) return h <= bottom_ ? 0.0 : alpha_ * std::pow(h - bottom_, exponent_);
-  if (h <= levels_.front()) return std::max(0.0, volumes_.front() - area(h) * (levels_.front() - h));
-  if (h >= levels_.back()) return volumes_.back() + area(h) * (h - levels_.back());
-  const auto i = static_cast<std::size_t>(std::upper_bound(levels_.begin(), levels_.end(), h) - levels_.begin());
-  return volumes_[i - 1] + (volumes_[i] - volumes_[i - 1]) * (h - levels_[i - 1]) / (levels_[i] - levels_[i - 1]);
+  return std::max(0.0, table_.extended(h));
 }
 
 double StageStorage::area(double h) const {
   if (!is_table_) return h <= bottom_ ? 0.0 : alpha_ * exponent_ * std::pow(h - bottom_, exponent_ - 1.0);
-  std::size_t i = static_cast<std::size_t>(std::upper_bound(levels_.begin(), levels_.end(), h) - levels_.begin());
-  i = std::clamp<std::size_t>(i, 1, levels_.size() - 1);
-  return (volumes_[i] - volumes_[i - 1]) / (levels_[i] - levels_[i - 1]);
+  return table_.slope(h);
 }
 
 double StageStorage::level(double v) const {
   if (!is_table_) return v <= 0.0 ? bottom_ : bottom_ + std::pow(v / alpha_, 1.0 / exponent_);
-  if (v <= volumes_.front()) return levels_.front() - (volumes_.front() - std::max(v, 0.0)) / area(levels_.front());
-  if (v >= volumes_.back()) return levels_.back() + (v - volumes_.back()) / area(levels_.back());
-  const auto i = static_cast<std::size_t>(std::upper_bound(volumes_.begin(), volumes_.end(), v) - volumes_.begin());
-  return levels_[i - 1] + (levels_[i] - levels_[i - 1]) * (v - volumes_[i - 1]) / (volumes_[i] - volumes_[i - 1]);
+  return table_.inverse(std::max(v, 0.0));
 }
 
 }  // namespace suite::breach

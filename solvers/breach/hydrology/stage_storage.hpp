@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/config/config.hpp"
+#include "core/tables/piecewise_linear.hpp"
 
 namespace suite::breach {
 
@@ -38,7 +39,7 @@ class StageStorage {
  private:
   bool is_table_ = false;
   double alpha_ = 0.0, bottom_ = 0.0, exponent_ = 1.0;
-  std::vector<double> levels_, volumes_;
+  PiecewiseLinear table_;  // (level, volume)
 };
 
 }  // namespace suite::breach

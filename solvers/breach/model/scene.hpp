@@ -15,7 +15,7 @@
 //   output:    {interval}                                                         # executable only
 //
 // The sections' own headers (embankment.hpp, soil.hpp, stage_storage.hpp, rating_curve.hpp,
-// hydrograph.hpp, headcut.hpp) describe their keys and the sources of their coefficients.
+// core/tables/hydrograph.hpp, headcut.hpp) describe their keys and the sources of their coefficients.
 #include <algorithm>
 #include <optional>
 #include <string>
@@ -23,7 +23,7 @@
 #include "core/config/config.hpp"
 #include "solvers/breach/erosion/headcut.hpp"
 #include "solvers/breach/geometry/embankment.hpp"
-#include "solvers/breach/hydrology/hydrograph.hpp"
+#include "core/tables/hydrograph.hpp"
 #include "solvers/breach/hydrology/rating_curve.hpp"
 #include "solvers/breach/hydrology/stage_storage.hpp"
 #include "solvers/breach/soil/soil.hpp"

@@ -239,7 +239,7 @@ std::string flux_function(const std::string& name, bool zone) {
 std::string inlet_flow_rate(const FoamScene& s, const SectionLayout& L) {
   // Slab discharge = q(t) * thickness, q = Q / crest_length.
   const double per_q = L.thickness / s.dam.crest_length;
-  if (s.inflow.kind() == breach::Hydrograph::Kind::constant) return "constant " + num(s.inflow(0.0) * per_q);
+  if (s.inflow.kind() == Hydrograph::Kind::constant) return "constant " + num(s.inflow(0.0) * per_q);
   std::vector<double> times = s.inflow.breakpoints();
   if (times.empty()) {  // a smooth law (sine): sampled finely enough for linear interpolation
     const int n = 400;

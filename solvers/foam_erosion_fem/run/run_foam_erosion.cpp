@@ -68,7 +68,7 @@ void check_restart_scene(const FoamScene& scene, const checkpoint::SceneRecord& 
   if (!(scene.time.end > state.time * (1 + 1e-12)))
     throw InputError(fmt::format("time.end = {} s: {} is at t = {} s already; give a later time.end to extend the run",
                                  scene.time.end, where, state.time));
-  if (scene.inflow.kind() == breach::Hydrograph::Kind::sine && saved.keys().at("time.end") != now.keys().at("time.end"))
+  if (scene.inflow.kind() == Hydrograph::Kind::sine && saved.keys().at("time.end") != now.keys().at("time.end"))
     throw InputError(fmt::format("time.end: the case's inlet table samples the sine inflow only up to the first run's "
                                  "end ({}), so {} cannot be extended; start a new run with the longer time.end",
                                  saved.keys().at("time.end"), where));

@@ -121,7 +121,7 @@ FoamScene FoamScene::read(const config::Section& root) {
                                                       "crest ({} m)",
                                                       sc.dam.foundation, sc.dam.crest()));
   }
-  sc.inflow = breach::Hydrograph::read(root.section("inflow"));
+  sc.inflow = Hydrograph::read(root.section("inflow"));
 
   sc.mesh = read_mesh(root.section("mesh"), sc.dam, sc.domain);
   sc.flow = read_flow(root.section_or_empty("flow"));

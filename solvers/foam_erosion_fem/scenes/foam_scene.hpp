@@ -8,7 +8,7 @@
 //   soil:      {erodibility, critical_shear_stress, repose_angle,   # kd, tau_c; repose optional
 //               undrained_shear_strength, unit_weight}              # optional: the breach model
 //   reservoir: {initial_level, tailwater_level}                     # tailwater optional
-//   inflow:    the breach model's `inflow` section (hydrograph.hpp): total discharge over the
+//   inflow:    the breach model's `inflow` section (core/tables/hydrograph.hpp): total discharge over the
 //              crest length; the 2D case carries q = Q / crest_length per metre
 //   domain:    {upstream_length, downstream_length, height}         # height above the foundation
 //   mesh:      {cell_size, far_cell_size, vertical_grading}
@@ -25,7 +25,7 @@
 
 #include "core/config/config.hpp"
 #include "solvers/breach/geometry/embankment.hpp"
-#include "solvers/breach/hydrology/hydrograph.hpp"
+#include "core/tables/hydrograph.hpp"
 
 namespace suite::foam_erosion {
 
@@ -88,7 +88,7 @@ struct FoamScene {
   SoilErosion soil;
   double initial_level = 0.0;
   std::optional<double> tailwater_level;
-  breach::Hydrograph inflow = breach::Hydrograph::constant(0.0);  // total m^3/s over crest_length
+  Hydrograph inflow = Hydrograph::constant(0.0);  // total m^3/s over crest_length
   Domain domain;
   MeshSettings mesh;
   FlowSettings flow;

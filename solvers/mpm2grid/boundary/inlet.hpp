@@ -23,7 +23,7 @@
 // The inlet's state (the emitted length, layers and mass) is part of a checkpoint.
 #include <vector>
 
-#include "solvers/breach/hydrology/hydrograph.hpp"
+#include "core/tables/hydrograph.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
 
@@ -36,7 +36,7 @@ struct InletSettings {
   double density = 1000;  // rho of the water, kg/m^3
   // The domain's box, m: x_low = lo[0], the floor lo[1], the depth along z lo[2] .. hi[2] (3D).
   Vec<Dim> lo = Vec<Dim>::Zero(), hi = Vec<Dim>::Ones();
-  breach::Hydrograph discharge = breach::Hydrograph::constant(0);  // q(t), m^2/s (per metre of width), t in s
+  Hydrograph discharge = Hydrograph::constant(0);  // q(t), m^2/s (per metre of width), t in s
 };
 
 // What the inlet has emitted so far.

@@ -13,7 +13,7 @@ namespace suite::mpm2grid {
 namespace {
 
 // A hydrograph table of [time, discharge per metre] rows in the units of `columns`.
-breach::Hydrograph read_table(const config::Section& s) {
+Hydrograph read_table(const config::Section& s) {
   const auto columns = s.get<std::vector<std::string>>("columns", {"s", "m^2/s"});
   if (columns.size() != 2) s.reject("columns", "give the units of the two columns, e.g. [s, m^2/s] or [min, m^2/s]");
   double to_s = 1, to_q = 1;
@@ -37,7 +37,7 @@ breach::Hydrograph read_table(const config::Section& s) {
       s.reject("rows", fmt::format("times must increase, but row {} ({} {}) does not come after row {}", n, row[0],
                                    columns[0], n - 1));
   }
-  return breach::Hydrograph::table(std::move(t), std::move(q));
+  return Hydrograph::table(std::move(t), std::move(q));
 }
 
 }  // namespace
@@ -63,7 +63,7 @@ InletSettings<Dim> read_inlet(const config::Section& s, const Vec<Dim>& lo, cons
              "discharge per metre of width)");
   if (velocity) {
     const double v = s.quantity("velocity", "m/s", config::Range::at_least(0));
-    in.discharge = breach::Hydrograph::constant(v * in.height);
+    in.discharge = Hydrograph::constant(v * in.height);
   } else {
     in.discharge = read_table(s.section("discharge"));
   }

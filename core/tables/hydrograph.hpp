@@ -1,5 +1,6 @@
 #pragma once
-// Inflow hydrographs Q_in(t) for reservoir routing. Time in s, discharge in m^3/s.
+// Inflow hydrographs Q_in(t): the breach model's reservoir inflow, foam-erosion's and mpm2grid's
+// inlets. Time in s, discharge in m^3/s (mpm2grid: m^2/s per metre of width).
 //
 //   table:      linear interpolation between (time, discharge) points; before the first point
 //               the first discharge, after the last the last (WinDAM users give hours and cfs)
@@ -21,8 +22,9 @@
 #include <vector>
 
 #include "core/config/config.hpp"
+#include "core/tables/piecewise_linear.hpp"
 
-namespace suite::breach {
+namespace suite {
 
 class Hydrograph {
  public:
@@ -41,7 +43,7 @@ class Hydrograph {
   // period, a constant inflow becomes `peak`. InputError for a table.
   Hydrograph with_peak(double peak) const;
   // m^3/s: the discharge a triangle starts and ends at (0 for the other kinds).
-  double base() const { return kind_ == Kind::triangular ? values_.front() : 0.0; }
+  double base() const { return kind_ == Kind::triangular ? table_.y().front() : 0.0; }
 
   double operator()(double t) const;  // m^3/s
   // Exact volume between t0 and t1 (m^3): piecewise-linear and sine forms integrate in closed
@@ -52,14 +54,13 @@ class Hydrograph {
   double cumulative(double t) const;
   // Times where the hydrograph has a kink (table points, triangle corners): an adaptive
   // integrator should step onto them rather than across.
-  const std::vector<double>& breakpoints() const { return times_; }
+  const std::vector<double>& breakpoints() const { return table_.x(); }
   Kind kind() const { return kind_; }
 
  private:
   Kind kind_ = Kind::constant;
-  std::vector<double> times_, values_;  // table and triangular (as a table)
-  std::vector<double> prefix_;          // integral from times_.front() to times_[i]
+  PiecewiseLinear table_;  // table and triangular (as a table)
   double peak_ = 0.0, period_ = 0.0;
 };
 
-}  // namespace suite::breach
+}  // namespace suite

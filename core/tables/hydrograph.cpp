@@ -1,4 +1,4 @@
-#include "solvers/breach/hydrology/hydrograph.hpp"
+#include "core/tables/hydrograph.hpp"
 
 #include <fmt/format.h>
 
@@ -11,44 +11,13 @@
 #include "core/config/units.hpp"
 #include "core/errors.hpp"
 
-namespace suite::breach {
-
-namespace {
-// The index i with t[i - 1] <= x < t[i], clamped to [1, n - 1].
-std::size_t segment(const std::vector<double>& t, double x) {
-  const auto i = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
-  return std::clamp<std::size_t>(i, 1, t.size() - 1);
-}
-
-// The piecewise-linear function through (t, q), held constant outside [t.front(), t.back()].
-double interpolate(const std::vector<double>& t, const std::vector<double>& q, double x) {
-  if (x <= t.front()) return q.front();
-  if (x >= t.back()) return q.back();
-  const std::size_t i = segment(t, x);
-  const double w = (x - t[i - 1]) / (t[i] - t[i - 1]);
-  return q[i - 1] + w * (q[i] - q[i - 1]);
-}
-
-}  // namespace
+namespace suite {
 
 Hydrograph Hydrograph::table(std::vector<double> times, std::vector<double> discharges) {
-  if (times.empty() || times.size() != discharges.size())
-    throw InputError("an inflow table needs at least one row of [time, discharge]");
-  for (std::size_t i = 0; i < times.size(); ++i) {
-    if (i > 0 && !(times[i] > times[i - 1]))
-      throw InputError(
-          fmt::format("inflow table: times must increase, but row {} ({} s) does not come after row {} ({} s)", i + 1,
-                      times[i], i, times[i - 1]));
-    if (discharges[i] < 0)
-      throw InputError(fmt::format("inflow table: row {} has a negative discharge ({} m^3/s)", i + 1, discharges[i]));
-  }
   Hydrograph h;
   h.kind_ = Kind::table;
-  h.times_ = std::move(times);
-  h.values_ = std::move(discharges);
-  h.prefix_.assign(h.times_.size(), 0.0);
-  for (std::size_t i = 1; i < h.times_.size(); ++i)
-    h.prefix_[i] = h.prefix_[i - 1] + 0.5 * (h.values_[i - 1] + h.values_[i]) * (h.times_[i] - h.times_[i - 1]);
+  h.table_ = PiecewiseLinear(std::move(times), std::move(discharges), {"inflow table", "time", "s", "discharge", "m^3/s"},
+                             PiecewiseLinear::Values::nonnegative, 1);
   return h;
 }
 
@@ -148,7 +117,7 @@ Hydrograph Hydrograph::with_peak(double peak) const {
     case Kind::sine:
       return sine(peak, period_);
     case Kind::triangular:
-      return triangular(peak, values_.front(), times_[1], times_[2]);
+      return triangular(peak, table_.y().front(), table_.x()[1], table_.x()[2]);
     case Kind::table:
       break;
   }
@@ -163,7 +132,7 @@ double Hydrograph::operator()(double t) const {
       return peak_ * (0.5 + 0.5 * std::sin(2.0 * std::numbers::pi * t / period_));
     case Kind::table:
     case Kind::triangular:
-      return interpolate(times_, values_, t);
+      return table_.clamped(t);
   }
   return 0.0;
 }
@@ -184,14 +153,7 @@ double Hydrograph::cumulative(double t) const {
     case Kind::triangular:
       break;
   }
-  // F(x) = integral from times_.front() to x of the constant-extended interpolant; F(t) - F(0).
-  auto running = [&](double x) {
-    if (x <= times_.front()) return values_.front() * (x - times_.front());
-    if (x >= times_.back()) return prefix_.back() + values_.back() * (x - times_.back());
-    const std::size_t i = segment(times_, x);
-    return prefix_[i - 1] + 0.5 * (values_[i - 1] + interpolate(times_, values_, x)) * (x - times_[i - 1]);
-  };
-  return running(t) - running(0.0);
+  return table_.integral(t) - table_.integral(0.0);
 }
 
-}  // namespace suite::breach
+}  // namespace suite
