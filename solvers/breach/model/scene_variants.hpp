@@ -1,10 +1,10 @@
 #pragma once
 // A scene read once and varied many times. A parameter study runs one scene thousands of times
-// with a few keys changed, and reading the YAML scene for each run cost about half as much as
-// the run itself (0.3 ms beside 0.4 ms for the default scene). SceneVariants reads the scene
-// once and makes each variant by setting the changed keys on a copy, with Scene::read's units
-// and ranges, the defaults that follow the dam (breach width, formation depth) and
-// Scene::cross_section_problem's checks.
+// with a few keys changed, and reading the YAML scene for each run cost a large share of what
+// the run itself costs (both times: docs/studies.md, "Cost per evaluation"). SceneVariants
+// reads the scene once and makes each variant by setting the changed keys on a copy, with
+// Scene::read's units and ranges, the defaults that follow the dam (breach width, formation
+// depth) and Scene::cross_section_problem's checks.
 //
 //   const breach::SceneVariants variants(config::Config::from_file("dam.yaml"));
 //   if (auto scene = variants.with({{"soil.erodibility", "300 (ft/h)/psf"}, {"dam.height", "16 ft"}}))
