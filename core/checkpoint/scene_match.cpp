@@ -47,9 +47,10 @@ SceneRecord SceneRecord::from_text(const std::string& text, const std::string& w
     ++number;
     const auto cut = line.find(kSeparator);
     if (cut == std::string::npos || cut == 0)
-      throw InputError(fmt::format("{}: line {} of its scene record ('{}') is not 'key = value'; the file is "
-                                   "damaged: restart from another checkpoint or start again",
-                                   where, number, line));
+      throw InputError(
+          fmt::format("{}: line {} of its scene record ('{}') is not 'key = value'; the file is "
+                      "damaged: restart from another checkpoint or start again",
+                      where, number, line));
     keys[line.substr(0, cut)] = line.substr(cut + std::char_traits<char>::length(kSeparator));
   }
   return SceneRecord(std::move(keys));
@@ -78,7 +79,8 @@ void SceneRecord::require_same(const SceneRecord& now, const std::vector<std::st
   if (keys.empty()) return;
   std::string list;
   for (const auto& key : keys)
-    list += fmt::format("{}{}: {} there, {} here", list.empty() ? "" : "; ", key, shown(keys_, key), shown(now.keys_, key));
+    list +=
+        fmt::format("{}{}: {} there, {} here", list.empty() ? "" : "; ", key, shown(keys_, key), shown(now.keys_, key));
   std::string allowed;
   for (const auto& key : may_change) allowed += (allowed.empty() ? "" : ", ") + key;
   throw InputError(fmt::format("{} was written for another scene ({}); restart with the scene it was written with{}",

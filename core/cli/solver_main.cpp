@@ -10,8 +10,7 @@ namespace suite::cli {
 
 config::Config SolverRun::scene(const std::vector<std::string>& overrides) const {
   if (command_line.scene) return config::Config::from_file(*command_line.scene, overrides);
-  return config::Config::from_string(program.default_scene, "<embedded " + program.default_scene_file + ">",
-                                     overrides);
+  return config::Config::from_string(program.default_scene, "<embedded " + program.default_scene_file + ">", overrides);
 }
 
 int SolverRun::dakota_driver(const std::function<int(const config::Config& scene)>& run_once) const {

@@ -9,10 +9,9 @@
 //                                    [](const suite::cli::SolverRun& r) { return run_x(r.world, r.scene(), ...); });
 //   }
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/cli/command_line.hpp"
 #include "core/config/config.hpp"

@@ -4,8 +4,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <charconv>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <set>
@@ -564,7 +564,8 @@ std::vector<std::filesystem::path> Section::files(const std::string& key) const 
   for (const auto& p : out) {
     list.push_back(p.string());
     std::error_code ec;
-    digests += (digests.empty() ? "" : "; ") + (std::filesystem::is_regular_file(p, ec) ? content_digest(p) : "a folder");
+    digests +=
+        (digests.empty() ? "" : "; ") + (std::filesystem::is_regular_file(p, ec) ? content_digest(p) : "a folder");
   }
   store_default(key, list);
   resolve(key, "[" + digests + "]");

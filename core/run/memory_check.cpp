@@ -51,7 +51,8 @@ std::optional<double> cgroup_headroom() {
       if (limit && used) return *limit - *used;
     } else if (("," + controllers + ",").find(",memory,") != std::string::npos) {
       const std::string dir = "/sys/fs/cgroup/memory" + path;
-      const auto limit = read_number(dir + "/memory.limit_in_bytes"), used = read_number(dir + "/memory.usage_in_bytes");
+      const auto limit = read_number(dir + "/memory.limit_in_bytes"),
+                 used = read_number(dir + "/memory.usage_in_bytes");
       // v1 reports "no limit" as a huge number (about 2^63 rounded to pages).
       if (limit && used && *limit < 1e18) return *limit - *used;
     }
@@ -84,13 +85,15 @@ void require_memory(const mpi::Comm& comm, double total_bytes, const std::string
   const double ratio = std::isfinite(available.bytes) ? need / std::max(available.bytes, 1.0) : 0.0;
   const double worst = comm.max(ratio);
   if (worst <= 1.0) return;
-  std::string message = ratio == worst ? fmt::format("{} needs about {} ({}) on a node running {} of its {} ranks, and "
-                                                     "{} is available there ({}); {}",
-                                                     what, format_bytes(need), breakdown, node.size(), comm.size(),
-                                                     format_bytes(available.bytes), available.source, fix)
+  std::string message = ratio == worst ? fmt::format(
+                                             "{} needs about {} ({}) on a node running {} of its {} ranks, and "
+                                             "{} is available there ({}); {}",
+                                             what, format_bytes(need), breakdown, node.size(), comm.size(),
+                                             format_bytes(available.bytes), available.source, fix)
                                        : std::string();
   // The lowest rank holding the message sends it.
-  const long long sender = -comm.max(message.empty() ? -static_cast<long long>(comm.size()) : -static_cast<long long>(comm.rank()));
+  const long long sender =
+      -comm.max(message.empty() ? -static_cast<long long>(comm.size()) : -static_cast<long long>(comm.rank()));
   comm.broadcast(message, static_cast<int>(sender));
   throw InputError(message);
 }

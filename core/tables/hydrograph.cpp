@@ -16,8 +16,9 @@ namespace suite {
 Hydrograph Hydrograph::table(std::vector<double> times, std::vector<double> discharges) {
   Hydrograph h;
   h.kind_ = Kind::table;
-  h.table_ = PiecewiseLinear(std::move(times), std::move(discharges), {"inflow table", "time", "s", "discharge", "m^3/s"},
-                             PiecewiseLinear::Values::nonnegative, 1);
+  h.table_ =
+      PiecewiseLinear(std::move(times), std::move(discharges), {"inflow table", "time", "s", "discharge", "m^3/s"},
+                      PiecewiseLinear::Values::nonnegative, 1);
   return h;
 }
 
@@ -88,16 +89,7 @@ Hydrograph Hydrograph::read(const config::Section& s) {
     }
     return read_file(path, columns[0], columns[1]);
   }
-  if (type == "table") {
-    const auto rows = s.table("table", {"s", "m^3/s"});
-    std::vector<double> t, q;
-    for (const auto& r : rows) t.push_back(r[0]), q.push_back(r[1]);
-    try {
-      return table(std::move(t), std::move(q));
-    } catch (const InputError& e) {
-      s.reject("table", e.what());
-    }
-  }
+  if (type == "table") return read_table_rows(s, "table", "s", "m^3/s", &Hydrograph::table);
   if (type == "constant") return constant(s.quantity("discharge", "m^3/s", Range::at_least(0)));
   if (type == "sine") {
     return sine(s.quantity("peak", "m^3/s", Range::at_least(0)), s.quantity("period", "s", 10.0, Range::positive()));

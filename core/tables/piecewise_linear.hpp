@@ -7,7 +7,11 @@
 // slope, the inverse, and the exact integral.
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "core/config/config.hpp"
+#include "core/errors.hpp"
 
 namespace suite {
 
@@ -44,5 +48,20 @@ class PiecewiseLinear {
   std::size_t segment(double x) const;  // i with x_{i-1} <= x < x_i, clamped to [1, rows - 1]
   std::vector<double> x_, y_, prefix_;  // prefix_[i]: the integral from x_0 to x_i
 };
+
+// A scene's table `key`, rows [x, y] in the units given, made into a table by
+// make(xs, ys); an InputError of make() is reported at the key (file, line, value).
+template <class Make>
+auto read_table_rows(const config::Section& s, const std::string& key, const std::string& x_unit,
+                     const std::string& y_unit, Make&& make)
+    -> decltype(make(std::vector<double>{}, std::vector<double>{})) {
+  std::vector<double> x, y;
+  for (const auto& row : s.table(key, {x_unit, y_unit})) x.push_back(row[0]), y.push_back(row[1]);
+  try {
+    return make(std::move(x), std::move(y));
+  } catch (const InputError& e) {
+    s.reject(key, e.what());
+  }
+}
 
 }  // namespace suite

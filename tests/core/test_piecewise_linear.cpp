@@ -15,7 +15,9 @@ namespace {
 const PiecewiseLinear::Names kNames{"test table", "level", "m", "volume", "m^3"};
 
 // y = 2x on [0, 1], then 2 + 6 (x - 1) on [1, 3]: two segments with slopes 2 and 6.
-PiecewiseLinear two_slopes() { return {{0, 1, 3}, {0, 2, 14}, kNames, PiecewiseLinear::Values::increasing}; }
+PiecewiseLinear two_slopes() {
+  return {{0, 1, 3}, {0, 2, 14}, kNames, PiecewiseLinear::Values::increasing};
+}
 
 TEST(PiecewiseLinear, InterpolatesBetweenRowsAndContinuesOutsideThem) {
   const auto f = two_slopes();
@@ -41,10 +43,10 @@ TEST(PiecewiseLinear, InverseUndoesExtendedEverywhere) {
 TEST(PiecewiseLinear, IntegralIsExact) {
   const auto f = two_slopes();
   EXPECT_DOUBLE_EQ(f.integral(0.0), 0.0);
-  EXPECT_DOUBLE_EQ(f.integral(1.0), 1.0);                   // x^2 on [0, 1]
-  EXPECT_DOUBLE_EQ(f.integral(2.0), 1.0 + 5.0);             // + (2 + 8) / 2
-  EXPECT_DOUBLE_EQ(f.integral(3.0), 1.0 + 16.0);            // + (2 + 14) / 2 * 2
-  EXPECT_DOUBLE_EQ(f.integral(4.0), 17.0 + 14.0);           // the last value held
+  EXPECT_DOUBLE_EQ(f.integral(1.0), 1.0);          // x^2 on [0, 1]
+  EXPECT_DOUBLE_EQ(f.integral(2.0), 1.0 + 5.0);    // + (2 + 8) / 2
+  EXPECT_DOUBLE_EQ(f.integral(3.0), 1.0 + 16.0);   // + (2 + 14) / 2 * 2
+  EXPECT_DOUBLE_EQ(f.integral(4.0), 17.0 + 14.0);  // the last value held
   EXPECT_DOUBLE_EQ(f.integral(-1.0), 0.0) << "the first value (0) held below";
 }
 
@@ -52,14 +54,22 @@ TEST(PiecewiseLinear, BadTablesNameTheTableAndTheRow) {
   using V = PiecewiseLinear::Values;
   EXPECT_EQ(input_error_of([] { PiecewiseLinear({1}, {1}, kNames, V::increasing); }),
             "the test table needs at least 2 rows of [level, volume]");
-  EXPECT_EQ(input_error_of([] { PiecewiseLinear({0, 2, 1}, {0, 1, 2}, kNames, V::increasing); }),
+  EXPECT_EQ(input_error_of([] {
+              PiecewiseLinear({0, 2, 1}, {0, 1, 2}, kNames, V::increasing);
+            }),
             "test table: levels must increase, but row 3 (1 m) does not come after row 2 (2 m)");
-  EXPECT_EQ(input_error_of([] { PiecewiseLinear({0, 1, 2}, {0, 1, 1}, kNames, V::increasing); }),
+  EXPECT_EQ(input_error_of([] {
+              PiecewiseLinear({0, 1, 2}, {0, 1, 1}, kNames, V::increasing);
+            }),
             "test table: volumes must increase, but row 3 (1 m^3) does not exceed row 2 (1 m^3)");
   EXPECT_EQ(input_error_of([] { PiecewiseLinear({0, 1, 2}, {0, 1, 1}, kNames, V::nondecreasing); }), "");
-  EXPECT_EQ(input_error_of([] { PiecewiseLinear({0, 1, 2}, {0, 2, 1}, kNames, V::nondecreasing); }),
+  EXPECT_EQ(input_error_of([] {
+              PiecewiseLinear({0, 1, 2}, {0, 2, 1}, kNames, V::nondecreasing);
+            }),
             "test table: volumes must not fall, but row 3 (1 m^3) is below row 2 (2 m^3)");
-  EXPECT_EQ(input_error_of([] { PiecewiseLinear({0, 1}, {0, -1}, kNames, V::nonnegative); }),
+  EXPECT_EQ(input_error_of([] {
+              PiecewiseLinear({0, 1}, {0, -1}, kNames, V::nonnegative);
+            }),
             "test table: row 2 has a negative volume (-1 m^3)");
   EXPECT_EQ(input_error_of([] { PiecewiseLinear({0}, {3}, kNames, V::nonnegative, 1); }), "")
       << "one row is a table where the caller allows it";

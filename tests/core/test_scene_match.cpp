@@ -36,8 +36,9 @@ const char* kScene = "soil: {young: 20 MPa}\nregions: [{height: 3.75 m}]\ntime: 
 
 TEST(SceneRecord, SameMeaningReadsTheSameWhateverTheUnits) {
   const auto a = read(kScene);
-  const auto b = read("soil: {young: 20000 kPa, friction_angle: 0.5}\nregions: [{height: 375 cm}]\n"
-                      "time: {end: 10000 ms}\ndrag: lumped\n");
+  const auto b = read(
+      "soil: {young: 20000 kPa, friction_angle: 0.5}\nregions: [{height: 375 cm}]\n"
+      "time: {end: 10000 ms}\ndrag: lumped\n");
   EXPECT_TRUE(a.differences(b, {}).empty()) << a.text() << "\n---\n" << b.text();
   EXPECT_EQ(a.keys().at("soil.young"), "20000000 Pa");
   EXPECT_EQ(a.keys().at("regions[0].height"), "3.75 m");
@@ -46,8 +47,8 @@ TEST(SceneRecord, SameMeaningReadsTheSameWhateverTheUnits) {
 
 TEST(SceneRecord, NamesEveryKeyThatDiffersExceptThoseThatMayChange) {
   const auto saved = read(kScene);
-  const auto now = read(kScene, {"regions.0.height=3 m", "soil.friction_angle=0.6", "time.end=20 s",
-                                 "time.max_steps=5"});
+  const auto now =
+      read(kScene, {"regions.0.height=3 m", "soil.friction_angle=0.6", "time.end=20 s", "time.max_steps=5"});
   EXPECT_EQ(saved.differences(now, {}),
             (std::vector<std::string>{"regions[0].height", "soil.friction_angle", "time.end", "time.max_steps"}));
   // An entry covers its key and every key below it, not a key that merely starts the same.

@@ -19,14 +19,7 @@ RatingCurve RatingCurve::table(std::vector<double> levels, std::vector<double> d
 }
 
 RatingCurve RatingCurve::read(const config::Section& s) {
-  const auto rows = s.table("table", {"m", "m^3/s"});
-  std::vector<double> h, q;
-  for (const auto& r : rows) h.push_back(r[0]), q.push_back(r[1]);
-  try {
-    return table(std::move(h), std::move(q));
-  } catch (const InputError& e) {
-    s.reject("table", e.what());
-  }
+  return read_table_rows(s, "table", "m", "m^3/s", &RatingCurve::table);
 }
 
 double RatingCurve::operator()(double h) const {

@@ -33,14 +33,7 @@ StageStorage StageStorage::read(const config::Section& sec) {
     // alpha's unit depends on m (m^(3-m)); it is read as a plain number in SI.
     return power_law(sec.number("alpha", Range::positive()), sec.quantity("bottom", "m", 0.0), m);
   }
-  const auto rows = sec.table("table", {"m", "m^3"});
-  std::vector<double> h, v;
-  for (const auto& r : rows) h.push_back(r[0]), v.push_back(r[1]);
-  try {
-    return table(std::move(h), std::move(v));
-  } catch (const InputError& e) {
-    sec.reject("table", e.what());
-  }
+  return read_table_rows(sec, "table", "m", "m^3", &StageStorage::table);
 }
 
 double StageStorage::bottom() const {

@@ -91,8 +91,8 @@ MemoryEstimate estimate_memory(const Scene<Dim>& sc) {
   // on each side of a 4-cell block: about (1 + 4/4)^Dim times the cells), for each species.
   const double cells_per_particle = 1.0 / std::pow(sc.particles_per_cell, Dim);
   e.nodes = (e.soil_particles + e.water_particles) * cells_per_particle * std::pow(2.0, Dim);
-  e.bytes = (e.soil_particles + e.water_particles) * kParticleStateCopies * state_bytes<Dim>() +
-            e.nodes * kNodeBytes<Dim>;
+  e.bytes =
+      (e.soil_particles + e.water_particles) * kParticleStateCopies * state_bytes<Dim>() + e.nodes * kNodeBytes<Dim>;
   e.bytes_per_rank = kRankBytes;
   return e;
 }
