@@ -88,4 +88,10 @@ void SceneRecord::require_same(const SceneRecord& now, const std::vector<std::st
                                allowed.empty() ? "" : fmt::format(" (a restart may change only {})", allowed)));
 }
 
+void require_later_end(double end, double time, const std::string& where) {
+  if (!(end > time * (1 + 1e-12)))
+    throw InputError(fmt::format("time.end = {} s: {} is at t = {} s already; give a later time.end to extend the run",
+                                 end, where, time));
+}
+
 }  // namespace suite::checkpoint

@@ -47,4 +47,9 @@ class SceneRecord {
   std::map<std::string, std::string> keys_;
 };
 
+// InputError unless the scene's time.end `end` (s) lies after `time` (s), the time `where` (a
+// checkpoint, a saved state) holds: a restart needs steps left to run, and a later end extends
+// a finished run.
+void require_later_end(double end, double time, const std::string& where);
+
 }  // namespace suite::checkpoint

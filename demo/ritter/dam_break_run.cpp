@@ -279,10 +279,7 @@ class DamBreakRun {
     const auto where = fmt::format("checkpoint '{}'", path.string());
     checkpoint::SceneRecord::from_bytes(r.read<unsigned char>("scene_keys"), where)
         .require_same(scene_keys_, kMayChangeOnRestart, where);
-    if (p_.step >= n_steps_)
-      throw InputError(fmt::format("time.end = {} s: {} is at t = {} s already; give a later time.end to extend the "
-                                   "run",
-                                   s_.t_end, where, r.header().time));
+    checkpoint::require_later_end(s_.t_end, r.header().time, where);
     last_checkpoint_step_ = p_.step;
     const auto range = r.read<long long>("block");
     if (range != std::vector<long long>{block_.first, block_.count})

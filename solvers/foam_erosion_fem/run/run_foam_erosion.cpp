@@ -65,9 +65,7 @@ void check_restart_scene(const FoamScene& scene, const checkpoint::SceneRecord& 
   const auto where = fmt::format("the coupled-loop state in {}", out.string());
   const auto saved = checkpoint::SceneRecord::from_text(text.str(), file.string());
   saved.require_same(now, {"time.end"}, where);
-  if (!(scene.time.end > state.time * (1 + 1e-12)))
-    throw InputError(fmt::format("time.end = {} s: {} is at t = {} s already; give a later time.end to extend the run",
-                                 scene.time.end, where, state.time));
+  checkpoint::require_later_end(scene.time.end, state.time, where);
   if (scene.inflow.kind() == Hydrograph::Kind::sine && saved.keys().at("time.end") != now.keys().at("time.end"))
     throw InputError(fmt::format("time.end: the case's inlet table samples the sine inflow only up to the first run's "
                                  "end ({}), so {} cannot be extended; start a new run with the longer time.end",
@@ -90,13 +88,19 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
   // outputs of the steps done; state.json is written after every step, so SIGUSR1 has nothing to add.
   SignalWatcher signals(out);
   bool stop = false;
+  std::string stop_reason;  // "signal 15", or the stop file's request
   RunnerOptions runner_options;
   runner_options.stop_requested = [&] {
     if (stop) return true;
     const auto request = signals.poll(self);
+    // A request file sends no signal (last_signal() stays 0): name the request instead.
+    const auto reason = [&] {
+      return signals.last_signal() ? fmt::format("signal {}", signals.last_signal()) : std::string(describe(request));
+    };
     if (request == SignalRequest::checkpoint)
-      log.info("signal {}: nothing to save, state.json is written after every coupling step", signals.last_signal());
+      log.info("{}: nothing to save, state.json is written after every coupling step", reason());
     stop = request == SignalRequest::checkpoint_and_stop;
+    if (stop) stop_reason = reason();
     return stop;
   };
   FoamRunner runner(out / "case", out / "logs", runner_options);
@@ -143,7 +147,7 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
     }
   } catch (const FoamRunStopped& e) {
     const auto saved = out / "state.json";
-    log.warn("stopped on signal {} ({}); {}; continue with --restart latest", signals.last_signal(), e.what(),
+    log.warn("stopped on {} ({}); {}; continue with --restart latest", stop_reason, e.what(),
              std::filesystem::exists(saved)
                  ? fmt::format("{} holds coupling step {}", saved.string(), LoopState::read(saved).step)
                  : std::string("no coupling step was finished"));
@@ -166,7 +170,7 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
   summary.set("status", status);
   summary.write(out / "summary.json");
   record.write(out / "run.json", timers,
-               exit_code != 0 ? "failed" : status == "stopped" ? fmt::format("stopped: signal {}", signals.last_signal())
+               exit_code != 0 ? "failed" : status == "stopped" ? "stopped: " + stop_reason
                                                                : "finished");
   return exit_code;
 }

@@ -334,10 +334,7 @@ class MpmRun {
     const auto where = fmt::format("checkpoint '{}'", path.string());
     checkpoint::SceneRecord::from_bytes(r.read<unsigned char>("scene_keys"), where)
         .require_same(scene_keys_, kMayChangeOnRestart, where);
-    if (!(scene_.time.end > r.header().time * (1 + 1e-12)))
-      throw InputError(fmt::format("time.end = {} s: {} is at t = {} s already; give a later time.end to extend the "
-                                   "run",
-                                   scene_.time.end, where, r.header().time));
+    checkpoint::require_later_end(scene_.time.end, r.header().time, where);
     read_state(r, sim_, p_);
     last_checkpoint_step_ = sim_.steps();
     record_.extra()["restarted_from"] = path.string();

@@ -67,14 +67,10 @@ MemoryEstimate estimate_memory(const Scene<Dim>& sc) {
       x[d] = s.walls.lo[d] + (i + 0.5) * spacing;
       r /= samples[d];
     }
-    bool in_soil = false, saturated = false, in_water = false;
-    for (const auto& reg : sc.soil_regions)
-      if (reg.template contains<Dim>(x)) in_soil = true, saturated = saturated || reg.saturated;
-    if (!in_soil)
-      for (const auto& reg : sc.water_regions) in_water = in_water || reg.template contains<Dim>(x);
-    soil += in_soil;
-    water += in_water || saturated;
-    pore_water += saturated;
+    const Seeded at = seeded_at(sc, x);
+    soil += at.soil;
+    water += at.water;
+    pore_water += at.soil && at.water;
   }
   MemoryEstimate e;
   const double per_sample = lattice / static_cast<double>(total);

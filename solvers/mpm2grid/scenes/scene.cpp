@@ -220,6 +220,16 @@ Scene<Dim> read_scene(const config::Config& cfg) {
 }
 
 template <int Dim>
+Seeded seeded_at(const Scene<Dim>& sc, const Vec<Dim>& x) {
+  Seeded seeded;
+  for (const auto& r : sc.soil_regions)
+    if (r.template contains<Dim>(x)) seeded.soil = true, seeded.water = seeded.water || r.saturated;
+  if (!seeded.soil)
+    for (const auto& r : sc.water_regions) seeded.water = seeded.water || r.template contains<Dim>(x);
+  return seeded;
+}
+
+template <int Dim>
 void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim, const mpi::Comm* comm) {
   const auto& s = sc.simulation;
   const int ppc = sc.particles_per_cell;
@@ -230,16 +240,6 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim, const mpi::Comm*
   const long long layers = count[Dim - 1];
   long long per_layer = 1;
   for (int d = 0; d + 1 < Dim; ++d) per_layer *= count[d];
-  auto inside = [](const std::vector<Region>& regions, const Vec<Dim>& x) {
-    for (const auto& r : regions)
-      if (r.template contains<Dim>(x)) return true;
-    return false;
-  };
-  auto saturated = [&](const Vec<Dim>& x) {
-    for (const auto& r : sc.soil_regions)
-      if (r.saturated && r.template contains<Dim>(x)) return true;
-    return false;
-  };
   // f(x, soil, water) for the lattice points of layers [first, last) in numbering order (x
   // fastest), with the particles each one gets: a soil particle, a water particle (a soil
   // point's pore water where its region is saturated), both or none.
@@ -251,9 +251,8 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim, const mpi::Comm*
         x[d] = s.walls.lo[d] + (static_cast<double>(r % count[d]) + 0.5) * spacing;
         r /= count[d];
       }
-      const bool soil = inside(sc.soil_regions, x);
-      const bool water = soil ? saturated(x) : inside(sc.water_regions, x);
-      if (soil || water) f(x, soil, water);
+      const Seeded at = seeded_at(sc, x);
+      if (at.soil || at.water) f(x, at.soil, at.water);
     }
   };
 
@@ -336,6 +335,8 @@ template struct Scene<2>;
 template struct Scene<3>;
 template Scene<2> read_scene<2>(const config::Config&);
 template Scene<3> read_scene<3>(const config::Config&);
+template Seeded seeded_at<2>(const Scene<2>&, const Vec<2>&);
+template Seeded seeded_at<3>(const Scene<3>&, const Vec<3>&);
 template void seed_particles<2>(const Scene<2>&, Simulation<2>&, const mpi::Comm*);
 template void seed_particles<3>(const Scene<3>&, Simulation<3>&, const mpi::Comm*);
 

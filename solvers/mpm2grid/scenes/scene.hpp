@@ -57,6 +57,15 @@ int scene_dimension(const config::Config& scene);
 template <int Dim>
 Scene<Dim> read_scene(const config::Config& scene);
 
+// What the seeding lattice puts at the point x: a soil particle where a soil region is; a water
+// particle where a water region is and no soil region, or with the soil where its region is
+// saturated (its pore water); both or none.
+struct Seeded {
+  bool soil = false, water = false;
+};
+template <int Dim>
+Seeded seeded_at(const Scene<Dim>& scene, const Vec<Dim>& x);
+
 // Particles on a regular lattice, particles_per_cell per axis in every cell, where the regions are;
 // water at the hydrostatic J under hydrostatic_surface if given (volume0 = lattice volume / J, so
 // that the particle fills its lattice cell at the hydrostatic pressure). Particle ids follow the
