@@ -18,6 +18,7 @@
 #include "carving/measure/measure_seed.hpp"
 #include "carving/measure/seed_profile.hpp"
 #include "carving/render/render_scene.hpp"
+#include "core/cli/subcommands.hpp"
 #include "core/config/config.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
@@ -26,31 +27,80 @@
 #include "core/mpi/comm.hpp"
 #include "core/mpi/environment.hpp"
 #include "core/run/guarded_main.hpp"
-#include "core/run/shard.hpp"
 #include "core/run/run_record.hpp"
+#include "core/run/shard.hpp"
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage:\n"
-    "  seedcarve measure IMAGES... --profile PROFILE.yaml [--id ID] [--weight MG] [key.path=value ...] [--out DIR]\n"
-    "      one seed: IMAGES is a folder of views or the files (carving: every view in turntable order;\n"
-    "      slicing: the top view, then the side view); writes DIR/results.csv and DIR/<id>/\n"
-    "  seedcarve batch MANIFEST.csv [--profile PROFILE.yaml] [--out DIR] [--retry-failed] [--shard K/N]\n"
-    "      every seed of the manifest (columns id,images[,method,weight_mg,profile]); rows stream to\n"
-    "      DIR/results.csv; a rerun skips measured seeds; under mpiexec rank 0 hands seeds to the others;\n"
-    "      --shard K/N (Slurm array task K of N) writes DIR/results.K.csv\n"
-    "  seedcarve merge DIR\n"
-    "      DIR/results.csv from the array tasks' DIR/results.K.csv, in manifest order\n"
-    "  seedcarve carve CARVE_INPUT.dat [--resolution N] [--subvoxel S]\n"
-    "      carve the masks and projection matrices of a carve_input.dat file (Kansas State format)\n"
-    "  seedcarve render SCENE.yaml --out DIR [key.path=value ...]\n"
-    "      synthetic photographs and exact masks of an analytic seed, its true volume and a profile\n"
-    "  seedcarve calibrate ball IMAGES... --diameter MM [--focal PX] [--profile P] [--out DIR]\n"
-    "  seedcarve calibrate chessboard IMAGES... --corners CxR --square MM [--out DIR]\n"
-    "  seedcarve calibrate axis IMAGES... --profile P [--out DIR]\n"
-    "      px/mm and camera distance from a reference ball; K from chessboard photographs; the\n"
-    "      turntable axis from one turn of a seed; writes DIR/calibration.json and DIR/camera.yaml\n";
+using suite::cli::CommandSpec;
+using Option = suite::cli::OptionSpec;
+
+suite::cli::ProgramSpec program_spec() {
+  const auto out = Option::text("out", "DIR", "output folder (created)");
+  const auto profile = Option::text("profile", "PROFILE.yaml", "the seed profile: method, camera, segmentation");
+  return {"seedcarve",
+          "seedcarve: seed volume, size and density from images (docs/carving.md)",
+          {
+              CommandSpec{
+                  "measure",
+                  "one seed: IMAGES is a folder of views or the files (carving: every view in turntable order; "
+                  "slicing: the top view, then the side view); writes DIR/results.csv and DIR/<id>/",
+                  "IMAGES...",
+                  1,
+                  -1,
+                  true,
+                  {out, Option::text("profile", "PROFILE.yaml", "the seed profile: method, camera, segmentation", true),
+                   Option::text("id", "ID", "the seed's id in the table (default: the first image's name)"),
+                   Option::number("weight", "MG", "the seed's weight, for its density")}},
+              CommandSpec{"batch",
+                          "every seed of the manifest (columns id,images[,method,weight_mg,profile]); rows stream to "
+                          "DIR/results.csv; a rerun skips measured seeds; under mpiexec rank 0 hands seeds to the "
+                          "others; --shard K/N (Slurm array task K of N) writes DIR/results.K.csv",
+                          "MANIFEST.csv",
+                          1,
+                          1,
+                          false,
+                          {out, profile, Option::flag("retry-failed", "measure again the seeds that failed before"),
+                           Option::text("shard", "K/N", "Slurm array task K of N: its share of the seeds")}},
+              CommandSpec{"merge",
+                          "DIR/results.csv from the array tasks' DIR/results.K.csv, in manifest order",
+                          "DIR",
+                          1,
+                          1,
+                          false,
+                          {}},
+              CommandSpec{
+                  "carve",
+                  "carve the masks and projection matrices of a carve_input.dat file (Kansas State format); "
+                  "prints the kept voxels and the volume in mm^3",
+                  "CARVE_INPUT.dat",
+                  1,
+                  1,
+                  false,
+                  {Option::count("resolution", "N",
+                                 "voxels along each side of the file's box (default: the file's grid)", 1),
+                   Option::count("subvoxel", "S", "also the volume from S^3 sub-samples of each boundary voxel", 0)}},
+              CommandSpec{"render",
+                          "synthetic photographs and exact masks of an analytic seed, its true volume and a profile",
+                          "SCENE.yaml",
+                          1,
+                          1,
+                          true,
+                          {Option::text("out", "DIR", "output folder (created)", true)}},
+              CommandSpec{"calibrate",
+                          "KIND IMAGES...: 'ball' (px/mm and camera distance from a reference ball, --diameter), "
+                          "'chessboard' (K from chessboard photographs, --corners, --square) or 'axis' (the turntable "
+                          "axis from one turn of a seed, --profile); writes DIR/calibration.json and DIR/camera.yaml",
+                          "KIND IMAGES...",
+                          1,
+                          -1,
+                          true,
+                          {out, profile, Option::number("diameter", "MM", "ball: its diameter"),
+                           Option::number("focal", "PX", "ball: the focal length, if known"),
+                           Option::text("corners", "CxR", "chessboard: inner corners"),
+                           Option::number("square", "MM", "chessboard: the side of a square")}},
+          }};
+}
 
 struct Arguments {
   std::string command;
@@ -58,81 +108,36 @@ struct Arguments {
   std::string out, profile, id, log_level = "info";
   std::optional<double> weight, diameter, focal, square;
   std::string corners;
-  int resolution = 0, subvoxel = 0;
+  long resolution = 0, subvoxel = 0;
   bool retry_failed = false;
   int shard_index = 0, shard_count = 0;
 };
 
-double number_argument(const std::string& flag, const std::string& value) {
-  std::size_t used = 0;
-  double x = 0;
-  try {
-    x = std::stod(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != value.size()) throw suite::InputError(fmt::format("{} '{}': give a number", flag, value));
-  return x;
-}
-
-Arguments parse(int argc, char** argv) {
+Arguments arguments_of(const suite::cli::CommandArguments& c) {
   Arguments a;
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty()) throw suite::InputError(std::string("no command given\n") + kUsage);
-  a.command = args[0];
-  for (std::size_t i = 1; i < args.size(); ++i) {
-    const std::string& s = args[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= args.size()) throw suite::InputError(s + " needs a value");
-      return args[++i];
-    };
-    if (s == "--out") {
-      a.out = value();
-    } else if (s == "--profile") {
-      a.profile = value();
-    } else if (s == "--id") {
-      a.id = value();
-    } else if (s == "--weight") {
-      a.weight = number_argument(s, value());
-    } else if (s == "--diameter") {
-      a.diameter = number_argument(s, value());
-    } else if (s == "--focal") {
-      a.focal = number_argument(s, value());
-    } else if (s == "--square") {
-      a.square = number_argument(s, value());
-    } else if (s == "--corners") {
-      a.corners = value();
-    } else if (s == "--resolution") {
-      a.resolution = static_cast<int>(number_argument(s, value()));
-    } else if (s == "--subvoxel") {
-      a.subvoxel = static_cast<int>(number_argument(s, value()));
-    } else if (s == "--log-level") {
-      a.log_level = value();
-    } else if (s == "--retry-failed") {
-      a.retry_failed = true;
-    } else if (s == "--shard") {
-      const suite::Shard shard = suite::parse_shard(value());
-      a.shard_index = shard.index, a.shard_count = shard.count;
-    } else if (suite::config::looks_like_override(s)) {
-      a.overrides.push_back(s);
-    } else if (s.rfind("--", 0) != 0) {
-      a.targets.push_back(s);
-    } else {
-      throw suite::InputError(fmt::format("unexpected argument '{}'\n{}", s, kUsage));
-    }
+  a.command = c.command;
+  a.targets = c.targets;
+  a.overrides = c.overrides;
+  a.out = c.text_or("out", "");
+  a.profile = c.text_or("profile", "");
+  a.id = c.text_or("id", "");
+  a.log_level = c.log_level;
+  a.weight = c.number("weight");
+  a.diameter = c.number("diameter");
+  a.focal = c.number("focal");
+  a.square = c.number("square");
+  a.corners = c.text_or("corners", "");
+  a.resolution = c.count_or("resolution", 0);
+  a.subvoxel = c.count_or("subvoxel", 0);
+  a.retry_failed = c.has("retry-failed");
+  if (c.has("shard")) {
+    const suite::Shard shard = suite::parse_shard(c.text_or("shard", ""));
+    a.shard_index = shard.index, a.shard_count = shard.count;
   }
   return a;
 }
 
-void expect_one_target(const Arguments& a, const char* what) {
-  if (a.targets.size() != 1)
-    throw suite::InputError(
-        fmt::format("seedcarve {} needs {} (got {} arguments)\n{}", a.command, what, a.targets.size(), kUsage));
-}
-
 int measure_one(const Arguments& a, suite::Logger& log) {
-  if (a.targets.empty()) throw suite::InputError(std::string("seedcarve measure needs images\n") + kUsage);
-  if (a.profile.empty()) throw suite::InputError("seedcarve measure needs --profile PROFILE.yaml");
   const auto profile = suite::carving::read_seed_profile(suite::config::Config::from_file(a.profile, a.overrides));
   suite::carving::SeedEntry seed;
   for (const auto& t : a.targets) seed.images.emplace_back(t);
@@ -152,12 +157,12 @@ int measure_one(const Arguments& a, suite::Logger& log) {
 }
 
 int carve_file(const Arguments& a, suite::Logger& log) {
-  expect_one_target(a, "one carve_input.dat file");
   const auto in = suite::carving::read_carve_input(a.targets[0]);
   suite::carving::VoxelGrid grid = in.grid;
-  if (a.resolution > 0) grid = suite::carving::VoxelGrid::cube({0, 0, 0}, in.box_mm.maxCoeff(), a.resolution);
+  if (a.resolution > 0)
+    grid = suite::carving::VoxelGrid::cube({0, 0, 0}, in.box_mm.maxCoeff(), static_cast<int>(a.resolution));
   const auto start = std::chrono::steady_clock::now();
-  const auto r = suite::carving::carve(in.views, in.masks, grid, {a.subvoxel, false});
+  const auto r = suite::carving::carve(in.views, in.masks, grid, {static_cast<int>(a.subvoxel), false});
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   log.info("{} views, {} x {} x {} voxels of {:.4g} mm: {} kept, {:.4f} mm^3{} in {:.3f} s", in.views.size(), grid.n[0],
            grid.n[1], grid.n[2], grid.voxel.x(), r.voxels, r.volume_mm3,
@@ -173,14 +178,14 @@ int main(int argc, char** argv) {
   suite::mpi::Environment env(argc, argv);
   const suite::mpi::Comm world(MPI_COMM_WORLD);
   return suite::guarded_main(world, [&] {
-    if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
-      if (world.is_root()) std::fputs(kUsage, stdout);
-      return 0;
+    const auto parsed = suite::cli::parse_command(program_spec(), argc, argv);
+    if (!parsed.arguments) {
+      if (world.is_root()) std::fputs((parsed.message + "\n").c_str(), parsed.exit_code ? stderr : stdout);
+      return parsed.exit_code;
     }
-    const Arguments a = parse(argc, argv);
+    const Arguments a = arguments_of(*parsed.arguments);
     suite::Logger log(world, "seedcarve", {suite::parse_log_level(a.log_level), false, nullptr});
     if (a.command == "batch") {
-      expect_one_target(a, "one manifest");
       suite::carving::BatchOptions o;
       o.manifest = a.targets[0];
       o.out = a.out.empty() ? "seedcarve-" + o.manifest.stem().string() : a.out;
@@ -200,27 +205,29 @@ int main(int argc, char** argv) {
           "seedcarve {} runs on one process, not {}; only `seedcarve batch` uses MPI ranks", a.command, world.size()));
     if (a.command == "measure") return measure_one(a, log);
     if (a.command == "merge") {
-      expect_one_target(a, "the batch folder");
       suite::carving::merge_batch(a.targets[0]);
       log.info("merged into {}", (std::filesystem::path(a.targets[0]) / "results.csv").string());
       return 0;
     }
     if (a.command == "carve") return carve_file(a, log);
     if (a.command == "calibrate") {
-      if (a.targets.empty()) throw suite::InputError(std::string("seedcarve calibrate needs ball, chessboard or axis\n") + kUsage);
-      suite::carving::CalibrateRequest r{a.targets[0], {a.targets.begin() + 1, a.targets.end()}, a.profile, a.overrides,
-                                         a.diameter, a.focal, a.square, a.corners,
+      suite::carving::CalibrateRequest r{a.targets[0],
+                                         {a.targets.begin() + 1, a.targets.end()},
+                                         a.profile,
+                                         a.overrides,
+                                         a.diameter,
+                                         a.focal,
+                                         a.square,
+                                         a.corners,
                                          a.out.empty() ? "seedcarve-calibration" : a.out};
       suite::carving::run_calibrate(r, log);
       return 0;
     }
     if (a.command == "render") {
-      expect_one_target(a, "one scene file");
-      if (a.out.empty()) throw suite::InputError("seedcarve render needs --out DIR");
       const auto s = suite::carving::render_scene(suite::config::Config::from_file(a.targets[0], a.overrides), a.out);
       log.info("{} views of the {} ({:.6g} mm^3) in {}", s.views, s.shape, s.volume_mm3, a.out);
       return 0;
     }
-    throw suite::InputError(fmt::format("unknown command '{}'\n{}", a.command, kUsage));
+    throw std::logic_error("seedcarve: command '" + a.command + "' has no handler");
   });
 }

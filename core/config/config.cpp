@@ -461,12 +461,27 @@ double Section::parse_quantity(const std::string& key, const YAML::Node& n, cons
   }
 }
 
+void Section::check_range(const std::string& key, const YAML::Node& n, double v, const std::string& unit,
+                          const Range& range) const {
+  if (range.contains(v)) return;
+  std::string problem = fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit);
+  double bare = 0;
+  std::size_t used = 0;
+  const std::string text = n.Scalar();
+  // A number without its unit is read in the key's unit: say so, since '30' meant in degrees
+  // reads as 30 rad.
+  if (!unit.empty() && unit != "1" && parse_double(text, bare, used) && trim(std::string_view(text).substr(used)).empty())
+    problem += fmt::format("; '{}' has no unit, so it was read in {}: write the unit after the number{}", text, unit,
+                           unit == "rad" ? fmt::format(", e.g. '{} deg'", text) : "");
+  reject(key, problem);
+}
+
 double Section::quantity(const std::string& key, const std::string& unit, Range range) const {
   const YAML::Node n = child(key);
   if (!n.IsDefined() || n.IsNull())
     missing(*state_, path_, *node_, key, unit.empty() ? "a number" : "a value in " + unit);
   const double v = parse_quantity(key, n, unit);
-  if (!range.contains(v)) reject(key, fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit));
+  check_range(key, n, v, unit, range);
   resolve(key, exact(v, unit));
   return v;
 }
@@ -480,7 +495,7 @@ double Section::quantity(const std::string& key, const std::string& unit, double
     return fallback;
   }
   const double v = parse_quantity(key, n, unit);
-  if (!range.contains(v)) reject(key, fmt::format("must be {}{}", range.describe(), unit.empty() ? "" : " " + unit));
+  check_range(key, n, v, unit, range);
   resolve(key, exact(v, unit));
   return v;
 }

@@ -106,6 +106,9 @@ class Section {
   template <class T>
   T convert(const std::string& key, const YAML::Node& n) const;
   double parse_quantity(const std::string& key, const YAML::Node& n, const std::string& unit) const;
+  // Rejects v outside range, saying so when n was a bare number read in `unit`.
+  void check_range(const std::string& key, const YAML::Node& n, double v, const std::string& unit,
+                   const Range& range) const;
   void store_default(const std::string& key, const YAML::Node& value) const;
   void resolve(const std::string& key, std::string value) const;  // for Config::resolved()
 

@@ -1,14 +1,12 @@
-// study: parameter studies over the suite's models (docs/methods/studies.md, issue 6).
-//   study run SPEC.yaml [key.path=value ...] [--out DIR] [--log-level LEVEL]
-//   study resume DIR [--retry-failed] [--log-level LEVEL]
-//   study analyze DIR
-//   study templatize FILE --var NAME=LOCATION ... [--out TEMPLATE]
+// study: parameter studies over the suite's models (docs/methods/studies.md, issue 6); `study
+// --help` lists the commands, `study COMMAND --help` describes one.
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "core/cli/subcommands.hpp"
 #include "core/config/config.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
@@ -24,23 +22,57 @@
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage:\n"
-    "  study run SPEC.yaml [key.path=value ...] [--out DIR] [--log-level LEVEL]\n"
-    "      generate the design, evaluate the model at every point, write DIR/tabular.dat and tabular.csv\n"
-    "      (DIR defaults to study-<SPEC name>)\n"
-    "  study resume DIR [--retry-failed] [--log-level LEVEL]\n"
-    "      continue a killed study: runs only what its ledger does not hold (and, with --retry-failed,\n"
-    "      what failed)\n"
-    "  study analyze DIR\n"
-    "      rewrite DIR's tables and analysis.json from its ledger, running nothing\n"
-    "  study prepare SPEC.yaml [key.path=value ...] --out DIR\n"
-    "      check SPEC and write DIR/study.yaml only (before a Slurm array of `study resume DIR --shard`)\n"
-    "  study resume DIR --shard K/N\n"
-    "      array task K of N: run the evaluations with (id - 1) % N == K into DIR/ledger.K.jsonl\n"
-    "  study templatize FILE --var NAME=LOCATION ... [--out TEMPLATE]\n"
-    "      write a template of FILE (standard output by default): LOCATION is LINE:FIELD for\n"
-    "      fixed-column text, or a YAML key path (soil.erodibility, items as key[2])\n";
+using suite::cli::CommandSpec;
+using Option = suite::cli::OptionSpec;
+
+suite::cli::ProgramSpec program_spec() {
+  const auto retry = Option::flag("retry-failed", "run again the evaluations that failed");
+  return {
+      "study",
+      "study: parameter studies, uncertainty quantification and sensitivity analysis (docs/studies.md)",
+      {
+          CommandSpec{"run",
+                      "generate the design, evaluate the model at every point, write DIR/tabular.dat and "
+                      "tabular.csv (DIR defaults to study-<SPEC name>)",
+                      "SPEC.yaml",
+                      1,
+                      1,
+                      true,
+                      {Option::text("out", "DIR", "the study folder (created)"), retry}},
+          CommandSpec{"resume",
+                      "continue a killed study: runs only what its ledger does not hold (and, with --retry-failed, "
+                      "what failed); with --shard K/N, array task K of N runs the evaluations with (id - 1) % N == K "
+                      "into DIR/ledger.K.jsonl",
+                      "DIR",
+                      1,
+                      1,
+                      false,
+                      {retry, Option::text("shard", "K/N", "Slurm array task K of N")}},
+          CommandSpec{"analyze",
+                      "rewrite DIR's tables and analysis.json from its ledger, running nothing",
+                      "DIR",
+                      1,
+                      1,
+                      false,
+                      {}},
+          CommandSpec{"prepare",
+                      "check SPEC and write DIR/study.yaml only (before a Slurm array of `study resume DIR --shard`)",
+                      "SPEC.yaml",
+                      1,
+                      1,
+                      true,
+                      {Option::text("out", "DIR", "the study folder (created)", true)}},
+          CommandSpec{"templatize",
+                      "write a template of FILE (standard output by default): LOCATION is LINE:FIELD for "
+                      "fixed-column text, or a YAML key path (soil.erodibility, items as key[2])",
+                      "FILE",
+                      1,
+                      1,
+                      false,
+                      {Option::repeated("var", "NAME=LOCATION", "a variable and where its value stands in FILE", true),
+                       Option::text("out", "TEMPLATE", "the template file")}},
+      }};
+}
 
 struct Arguments {
   std::string command, target, out, log_level = "info";
@@ -50,39 +82,23 @@ struct Arguments {
   int shard_index = 0, shard_count = 0;  // --shard K/N
 };
 
-Arguments parse(int argc, char** argv) {
+Arguments arguments_of(const suite::cli::CommandArguments& c) {
   Arguments a;
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty()) throw suite::InputError(std::string("no command given\n") + kUsage);
-  a.command = args[0];
-  for (std::size_t i = 1; i < args.size(); ++i) {
-    const std::string& s = args[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= args.size()) throw suite::InputError(s + " needs a value");
-      return args[++i];
-    };
-    if (s == "--out") {
-      a.out = value();
-    } else if (s == "--log-level") {
-      a.log_level = value();
-    } else if (s == "--var") {
-      const std::string v = value();
-      const auto eq = v.find('=');
-      if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
-        throw suite::InputError(fmt::format("--var '{}': write NAME=LOCATION, e.g. Kd=12:3 or Kd=soil.erodibility", v));
-      a.vars.emplace_back(v.substr(0, eq), v.substr(eq + 1));
-    } else if (s == "--shard") {
-      const suite::Shard shard = suite::parse_shard(value());
-      a.shard_index = shard.index, a.shard_count = shard.count;
-    } else if (s == "--retry-failed") {
-      a.retry_failed = true;
-    } else if (suite::config::looks_like_override(s)) {
-      a.overrides.push_back(s);
-    } else if (a.target.empty() && s.rfind("--", 0) != 0) {
-      a.target = s;
-    } else {
-      throw suite::InputError(fmt::format("unexpected argument '{}'\n{}", s, kUsage));
-    }
+  a.command = c.command;
+  a.target = c.targets.at(0);
+  a.overrides = c.overrides;
+  a.out = c.text_or("out", "");
+  a.log_level = c.log_level;
+  a.retry_failed = c.has("retry-failed");
+  for (const auto& v : c.all("var")) {
+    const auto eq = v.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
+      throw suite::InputError(fmt::format("--var '{}': write NAME=LOCATION, e.g. Kd=12:3 or Kd=soil.erodibility", v));
+    a.vars.emplace_back(v.substr(0, eq), v.substr(eq + 1));
+  }
+  if (c.has("shard")) {
+    const suite::Shard shard = suite::parse_shard(c.text_or("shard", ""));
+    a.shard_index = shard.index, a.shard_count = shard.count;
   }
   return a;
 }
@@ -93,16 +109,15 @@ int main(int argc, char** argv) {
   suite::mpi::Environment env(argc, argv);
   const suite::mpi::Comm world(MPI_COMM_WORLD);
   return suite::guarded_main(world, [&] {
-    if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
-      if (world.is_root()) std::fputs(kUsage, stdout);
-      return 0;
+    const auto parsed = suite::cli::parse_command(program_spec(), argc, argv);
+    if (!parsed.arguments) {
+      if (world.is_root()) std::fputs((parsed.message + "\n").c_str(), parsed.exit_code ? stderr : stdout);
+      return parsed.exit_code;
     }
-    const Arguments a = parse(argc, argv);
+    const Arguments a = arguments_of(*parsed.arguments);
     suite::Logger log(world, "study", {suite::parse_log_level(a.log_level), false, nullptr});
     const bool mpi = world.size() > 1;  // rank 0 hands out evaluations to the other ranks
     if (a.command == "prepare") {
-      if (a.target.empty() || a.out.empty())
-        throw suite::InputError(std::string("study prepare needs a specification and --out\n") + kUsage);
       suite::mpi::collective_try(world, [&] {
         if (world.is_root()) {
           suite::studies::StudyOptions prepare{a.out, false, false, false, nullptr, true};
@@ -112,7 +127,6 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (a.command == "run") {
-      if (a.target.empty()) throw suite::InputError(std::string("study run needs a specification file\n") + kUsage);
       const std::string out = a.out.empty() ? "study-" + std::filesystem::path(a.target).stem().string() : a.out;
       if (!mpi) {
         suite::studies::run_study(suite::config::Config::from_file(a.target, a.overrides), {out, false, a.retry_failed},
@@ -132,10 +146,6 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (a.command == "resume" || a.command == "analyze") {
-      if (a.target.empty()) throw suite::InputError(std::string("study resume needs the study folder\n") + kUsage);
-      if (!a.overrides.empty() || !a.out.empty())
-        throw suite::InputError("study " + a.command +
-                                " takes the study folder only: the specification is its study.yaml");
       const std::filesystem::path dir = a.target;
       if (!std::filesystem::exists(dir / "study.yaml"))
         throw suite::InputError(fmt::format("'{}' is not a study folder (no study.yaml)", dir.string()));
@@ -148,8 +158,6 @@ int main(int argc, char** argv) {
     }
     if (a.command == "templatize") {
       if (!world.is_root()) return 0;
-      if (a.target.empty() || a.vars.empty())
-        throw suite::InputError(std::string("study templatize needs a file and at least one --var\n") + kUsage);
       std::ifstream in(a.target);
       if (!in) throw suite::InputError(fmt::format("cannot read '{}'", a.target));
       std::stringstream text;
@@ -165,6 +173,6 @@ int main(int argc, char** argv) {
                      a.target.c_str());
       return 0;
     }
-    throw suite::InputError(fmt::format("unknown command '{}'\n{}", a.command, kUsage));
+    throw std::logic_error("study: command '" + a.command + "' has no handler");
   });
 }

@@ -80,6 +80,18 @@ TEST(Config, OutOfRangeValueNamesTheRangeAndUnit) {
   EXPECT_NE(msg.find("s.yaml:2:13: key 'soil.cohesion' = '-3 kPa': must be >= 0 Pa"), std::string::npos) << msg;
 }
 
+TEST(Config, BareNumberOutOfRangeSaysWhichUnitItWasReadIn) {
+  auto cfg = Config::from_string("soil:\n  friction_angle: 30\n", "s.yaml");
+  const std::string msg = input_error_of(
+      [&] { cfg.root().section("soil").quantity("friction_angle", "rad", Range::between(0, 1.4)); });
+  EXPECT_NE(msg.find("must be in [0, 1.4] rad; '30' has no unit, so it was read in rad"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("e.g. '30 deg'"), std::string::npos) << msg;
+  auto with_unit = Config::from_string("soil:\n  friction_angle: 95 deg\n", "s.yaml");
+  const std::string plain = input_error_of(
+      [&] { with_unit.root().section("soil").quantity("friction_angle", "rad", Range::between(0, 1.4)); });
+  EXPECT_EQ(plain.find("has no unit"), std::string::npos) << plain;
+}
+
 TEST(Config, WrongUnitKindIsExplained) {
   auto cfg = Config::from_string("level: 3 s\n", "s.yaml");
   const std::string msg = input_error_of([&] { cfg.root().quantity("level", "m"); });

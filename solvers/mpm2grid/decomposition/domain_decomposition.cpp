@@ -16,7 +16,7 @@ namespace suite::mpm2grid {
 
 template <int Dim>
 Index<Dim> DomainDecomposition<Dim>::home(const Vec<Dim>& x) const {
-  return BlockGrid<Dim>::home_block(x, h_);
+  return BlockGrid<Dim>::home_block(x, grid_->spacing());
 }
 
 template <int Dim>
@@ -197,7 +197,7 @@ void DomainDecomposition<Dim>::partition(const Particles<Dim>& water, const Part
     BlockOwners::Key key;
     long long soil, water;
   };
-  BlockGrid<Dim> touched(h_);
+  BlockGrid<Dim> touched(grid_->spacing());
   touch_blocks(water, touched);
   touch_blocks(soil, touched);
   std::unordered_map<BlockOwners::Key, std::array<long long, 2>> homes;

@@ -46,8 +46,10 @@ struct DecompositionStats {
 template <int Dim>
 class DomainDecomposition {
  public:
-  DomainDecomposition(const mpi::Comm& comm, const DecompositionSettings& settings, double h)
-      : comm_(comm), s_(settings), h_(h) {}
+  // `grid` is the caller's grid, whose spacing places particles in blocks; it must outlive the
+  // decomposition.
+  DomainDecomposition(const mpi::Comm& comm, const DecompositionSettings& settings, const BlockGrid<Dim>& grid)
+      : comm_(comm), s_(settings), grid_(&grid) {}
 
   const mpi::Comm& comm() const { return comm_; }
   const DecompositionStats& stats() const { return stats_; }
@@ -101,7 +103,7 @@ class DomainDecomposition {
 
   mpi::Comm comm_;
   DecompositionSettings s_;
-  double h_;
+  const BlockGrid<Dim>* grid_;  // the simulation's grid (for its spacing)
   BlockOwners owners_;
   HaloExchange<Dim> halo_;
   DecompositionStats stats_;

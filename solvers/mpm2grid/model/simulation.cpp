@@ -22,10 +22,10 @@ template <int Dim>
 Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm)
     : s_(settings),
       grid_(settings.h),
-      fold_(settings.walls, settings.h, settings.inlet.has_value()),
+      fold_(settings.walls, grid_.spacing(), settings.inlet.has_value()),
       comm_(std::move(comm)) {
   if (s_.inlet) inlet_.emplace(*s_.inlet);
-  if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, s_.h);
+  if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, grid_);
   if (s_.drag != DragScheme::consistent) return;
   if (!comm_) throw std::invalid_argument("the consistent drag solve needs a communicator");
   consistent_ = std::make_unique<ConsistentDrag<Dim>>(*comm_, "drag_");
@@ -39,7 +39,7 @@ StepLimit Simulation<Dim>::stable_dt() const {
   const double vmax = max_over_ranks(std::sqrt(vmax2));
   const bool water = sum_over_ranks(static_cast<double>(water_.size())) > 0;
   const bool soil = sum_over_ranks(static_cast<double>(soil_.size())) > 0;
-  const double h = s_.h;
+  const double h = grid_.spacing();
   StepLimit best{s_.dt_max, "dt_max"};
   auto consider = [&](double dt, const char* why) {
     if (dt < best.dt) best = {dt, why};
@@ -198,7 +198,7 @@ void Simulation<Dim>::add_loads() {
   std::array<double, BlockGrid<Dim>::kNodes> weights;
   for (std::size_t q = 0; q < soil_.size(); ++q) {
     if (soil_.load[q].isZero(0.0)) continue;
-    const Stencil<Dim> st(soil_.x[q], s_.h);
+    const Stencil<Dim> st(soil_.x[q], grid_.spacing());
     grid_.stencil_slots(st, slots);
     st.weights(weights);
     for (int n = 0; n < BlockGrid<Dim>::kNodes; ++n) {
@@ -217,11 +217,11 @@ void Simulation<Dim>::add_loads() {
 template <int Dim>
 void Simulation<Dim>::solid_fractions() {
   constexpr double kMost = 0.95;  // keeps 1 - phi_s away from zero where B-splines overshoot
-  const double per_kg = (1 - s_.soil.porosity) / (s_.soil.density * std::pow(s_.h, Dim));
+  const double per_kg = (1 - s_.soil.porosity) / (s_.soil.density * std::pow(grid_.spacing(), Dim));
   solid_fraction_.assign(grid_.nodes(), 0.0);
   for (std::size_t i = 0; i < grid_.nodes(); ++i) {
     if (!(soil_nodes_.mass[i] > 0)) continue;
-    const double inside = fold_.inside_fraction(s_.walls, grid_.position(static_cast<long>(i)), s_.h);
+    const double inside = fold_.inside_fraction(s_.walls, grid_.position(static_cast<long>(i)), grid_.spacing());
     if (inside > 0) solid_fraction_[i] = std::min(kMost, per_kg * soil_nodes_.mass[i] / inside);
   }
   if (dd_) dd_->copy_to_ghosts(solid_fraction_);
@@ -287,16 +287,16 @@ template <int Dim>
 void Simulation<Dim>::wall_water_fill() {
   water_fill_ = water_nodes_.mass;
   constexpr int kSide = BlockGrid<Dim>::kSide;
-  const double reach = 2 * s_.h;
+  const double h = grid_.spacing(), reach = 2 * h;
   for (std::size_t b = 0; b < grid_.blocks(); ++b) {
     const Index<Dim>& c = grid_.block_coord(b);
     bool near = false;
     for (int d = 0; d < Dim; ++d)
-      near = near || c[d] * kSide * s_.h < s_.walls.lo[d] + reach || (c[d] + 1) * kSide * s_.h > s_.walls.hi[d] - reach;
+      near = near || c[d] * kSide * h < s_.walls.lo[d] + reach || (c[d] + 1) * kSide * h > s_.walls.hi[d] - reach;
     if (!near) continue;
     for (std::size_t i = b * BlockGrid<Dim>::kNodes; i < (b + 1) * BlockGrid<Dim>::kNodes; ++i) {
       if (!(water_fill_[i] > 0)) continue;
-      const double inside = fold_.inside_fraction(s_.walls, grid_.position(static_cast<long>(i)), s_.h);
+      const double inside = fold_.inside_fraction(s_.walls, grid_.position(static_cast<long>(i)), h);
       water_fill_[i] = inside > 0 ? water_fill_[i] / inside : 0.0;
     }
   }
@@ -317,14 +317,12 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::record_homes(const Particles<Dim>& P) {
   home_before_.resize(P.size());
-  for (std::size_t p = 0; p < P.size(); ++p)
-    home_before_[p] = BlockGrid<Dim>::key(BlockGrid<Dim>::home_block(P.x[p], s_.h));
+  for (std::size_t p = 0; p < P.size(); ++p) home_before_[p] = BlockGrid<Dim>::key(grid_.home_block(P.x[p]));
 }
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::mark_moved(const Particles<Dim>& P, std::vector<char>& left) const {
   left.resize(P.size());
-  for (std::size_t p = 0; p < P.size(); ++p)
-    left[p] = BlockGrid<Dim>::key(BlockGrid<Dim>::home_block(P.x[p], s_.h)) != home_before_[p];
+  for (std::size_t p = 0; p < P.size(); ++p) left[p] = BlockGrid<Dim>::key(grid_.home_block(P.x[p])) != home_before_[p];
 }
 
 namespace {
@@ -364,7 +362,7 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   if (dd_) mark_moved(water_, left_home_[0]);
   wall_water_fill();
   soil_velocities();  // leaves the sums sum_i w_ip m_w,i / I_i in `saturation`
-  const double full = s_.water.density * std::pow(s_.h, Dim) * s_.soil.porosity;  // kg in a node's pores
+  const double full = s_.water.density * std::pow(grid_.spacing(), Dim) * s_.soil.porosity;  // kg in a node's pores
   known_stress_.resize(soil_.size());
   if (dd_) record_homes(soil_);
   // The return mappings kBatch particles at a time (HenckyDruckerPrager::project_all), the last

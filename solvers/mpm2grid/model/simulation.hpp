@@ -49,7 +49,7 @@ struct SoilSettings {
 
 template <int Dim>
 struct SimulationSettings {
-  double h = 0.01;  // grid spacing, m
+  double h = 0.01;  // grid spacing, m (the scene's; a Simulation's grid() owns it from then on)
   Vec<Dim> gravity = Vec<Dim>::Zero();
   Walls<Dim> walls;
   WaterSettings water;
@@ -87,6 +87,9 @@ class Simulation {
   // rank, the particles are seeded on any ranks (distribute() spreads them) and water() and
   // soil() hold this rank's.
   explicit Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm = std::nullopt);
+  // The decomposition holds on to grid_: a simulation stays where it was built.
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   Particles<Dim>& water() { return water_; }
   Particles<Dim>& soil() { return soil_; }
