@@ -9,8 +9,8 @@ particle the one seeded nearest (W, H).
              after the first output interval, is at least 0.99: only the particles within a
              stencil of the free surfaces see fewer water nodes), and the cut collapses: the top
              corner drops by more than H/2, and the slope of the deposit, a least-squares line
-             through the crest profile (per column of width h, the top of its highest particle's
-             cell) where it lies between 0.15 H and 0.85 H, is at most the friction angle
+             through the crest profile (per column of width h, the soil's thickness read from
+             its cells' fill, io/dam_measures.hpp) where it lies between 0.15 H and 0.85 H, is at most the friction angle
              phi + 5 deg (in 2D the soil's cone is Mohr-Coulomb in the plane with the scene's phi).
 The 5 deg: the profile's points carry up to s/2 = 2.5 mm of quantisation over a fitted rise of
 0.7 H = 0.14 m (about 1 deg), and a cohesionless slope in this MPM stands up to a few degrees

@@ -64,8 +64,11 @@ TEST(SceneSeeding, ASaturatedSoilRegionGetsOnePoreWaterParticlePerSoilParticle) 
     ASSERT_LT(w, water.size());
     EXPECT_EQ(water.x[w], soil.x[p]) << "pore water seeded at its soil particle's point";
     EXPECT_DOUBLE_EQ(water.mass[w], 1000.0 * volume);
-    EXPECT_DOUBLE_EQ(water.volume0[w], volume);
-    EXPECT_EQ(water.J[w], 1.0);
+    // At the hydrostatic pressure under the block's top (0.2 m; docs/mpm2grid.md, "Initial
+    // state"), filling its lattice cell there: volume0 J = the lattice volume.
+    const double p_w = 1000.0 * 9.81 * (0.2 - water.x[w][1]);
+    EXPECT_NEAR(scene.simulation.water.eos.pressure(water.J[w]), p_w, 1e-9 * p_w + 1e-9);
+    EXPECT_DOUBLE_EQ(water.volume0[w] * water.J[w], volume);
     ++w;
   }
   EXPECT_EQ(w, water.size());
@@ -84,7 +87,7 @@ TEST(SceneSeeding, TheMixtureSeedsPoreWaterInThePoresAndASurchargeLoadsTheTopRow
   ASSERT_EQ(water.size(), 1600u);
   for (std::size_t w = 0; w < water.size(); ++w) {
     EXPECT_DOUBLE_EQ(water.mass[w], 0.4 * 1000.0 * volume);
-    EXPECT_DOUBLE_EQ(water.volume0[w], 0.4 * volume);
+    EXPECT_DOUBLE_EQ(water.volume0[w] * water.J[w], 0.4 * volume);  // at its hydrostatic J
   }
   int loaded = 0;
   for (std::size_t p = 0; p < soil.size(); ++p) {

@@ -279,27 +279,26 @@ class MpmRun {
   long long count(const Particles<Dim>& P) const { return comm_.sum(static_cast<long long>(P.size())); }
 
   double floor() const { return scene_.simulation.walls.lo[1]; }
-  // The crest profile of every rank's soil: each column's top is the highest over the ranks.
-  // COLLECTIVE.
+  // The crest profile of every rank's soil (io/dam_measures.hpp): the cells' counts summed over
+  // the ranks, up to the highest soil particle. COLLECTIVE.
   std::vector<ColumnTop> profile() const {
-    const double x0 = scene_.simulation.walls.lo[0], h = scene_.simulation.h;
-    auto local = crest_profile(sim_.soil(), x0, h, half_spacing_);
-    if (comm_.size() == 1) return local;
-    const auto columns = static_cast<std::size_t>(std::llround((scene_.simulation.walls.hi[0] - x0) / h)) + 1;
-    std::vector<double> top(columns, -std::numeric_limits<double>::infinity());
-    for (const auto& c : local) {
-      const auto i = static_cast<long long>(std::floor((c.x - x0) / h));
-      if (i >= 0 && i < static_cast<long long>(columns)) top[static_cast<std::size_t>(i)] = c.top;
-    }
-    comm_.all_reduce(top, mpi::Comm::Reduction::max);
-    std::vector<ColumnTop> merged;
-    for (std::size_t i = 0; i < columns; ++i)
-      if (std::isfinite(top[i])) merged.push_back({x0 + (static_cast<double>(i) + 0.5) * h, top[i]});
-    return merged;
+    const auto& walls = scene_.simulation.walls;
+    const double x0 = walls.lo[0], h = scene_.simulation.h, spacing = 2 * half_spacing_;
+    double highest = floor();
+    for (const auto& x : sim_.soil().x) highest = std::max(highest, x[1]);
+    highest = sim_.max_over_ranks(highest);
+    const auto columns = static_cast<long>(std::llround((walls.hi[0] - x0) / h)) + 1;
+    const auto rows = static_cast<long>(std::floor((highest - floor()) / h)) + 1;
+    const double depth = Dim == 3 ? walls.hi[Dim - 1] - walls.lo[Dim - 1] : 1.0;
+    auto cells = soil_columns(sim_.soil(), x0, floor(), h, columns, rows, std::pow(spacing, Dim) / (h * h * depth));
+    if (comm_.size() > 1) comm_.all_reduce(cells.count, mpi::Comm::Reduction::sum);
+    return crest_profile(cells);
   }
-  // Soil still in the dam's initial cross-section grown by half a particle spacing. COLLECTIVE.
+  // The as-placed volume of the soil still in the dam's initial cross-section grown by half a
+  // particle spacing (io/dam_measures.hpp). COLLECTIVE.
   double soil_in_dam() const {
-    return sim_.sum_over_ranks(volume_within(sim_.soil(), scene_.soil_regions, half_spacing_));
+    const double count = static_cast<double>(count_within(sim_.soil(), scene_.soil_regions, half_spacing_));
+    return sim_.sum_over_ranks(count) * std::pow(2 * half_spacing_, Dim);
   }
   double eroded_volume() const { return p_.initial_soil_volume - soil_in_dam(); }
 

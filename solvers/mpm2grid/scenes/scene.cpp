@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "solvers/mpm2grid/scenes/initial_state.hpp"
 #include "solvers/mpm2grid/scenes/read_inlet.hpp"
 
 namespace suite::mpm2grid {
@@ -186,6 +187,12 @@ Scene<Dim> read_scene(const config::Config& cfg) {
     if (!root.has("water")) root.reject("inlet", "an inlet needs the water: section (density, bulk_modulus, regions)");
     sim.inlet = read_inlet<Dim>(*inlet, sim.walls.lo, sim.walls.hi, sim.h / sc.particles_per_cell, sim.water.density);
   }
+  const auto initial = root.section_or_empty("initial_state");
+  sc.initial.geostatic = initial.get<bool>("geostatic", true);
+  sc.initial.hydrostatic = initial.get<bool>("hydrostatic", true);
+  if (initial.has("k0")) sc.initial.k0 = initial.number("k0", Range::positive());
+  if (sc.hydrostatic_surface && initial.has("hydrostatic") && !sc.initial.hydrostatic)
+    initial.reject("hydrostatic", "the scene gives water.hydrostatic_surface; drop one of the two");
   if (sc.water_regions.empty() && sc.soil_regions.empty() && !sim.inlet)
     root.reject("water", "the scene has no material: give water: {regions: ...} or soil: {regions: ...}");
 
@@ -300,17 +307,20 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim, const mpi::Comm*
         f[1] -= r.surcharge * std::pow(spacing, Dim - 1);
     return f;
   };
-  // A water particle filling the part `fraction` of its lattice cell, at the hydrostatic pressure
-  // under hydrostatic_surface if the scene gives one (J from p, volume0 = fraction volume / J),
-  // else at rest.
-  auto add_water = [&](const Vec<Dim>& x, double fraction) {
-    double J = 1;
-    if (sc.hydrostatic_surface) {
-      const double p = s.water.density * std::abs(s.gravity[1]) * std::max(0.0, *sc.hydrostatic_surface - x[1]);
-      J = std::pow(1 + p / s.water.eos.bulk_modulus, -1 / s.water.eos.gamma);
-    }
+  // The particles at rest in the scene's initial state: water filling the part `fraction` of its
+  // lattice cell at the hydrostatic J (volume0 = fraction volume / J), soil at its geostatic F_E
+  // (volume0 = volume / det F_E).
+  const InitialState<Dim> initial(sc, spacing);
+  auto add_water = [&](const Vec<Dim>& x, double fraction, double pressure) {
+    const double J = initial.water_j(pressure);
     sim.water().add(x, Vec<Dim>::Zero(), s.water.density * fraction * volume, fraction * volume / J);
     sim.water().J.back() = J;
+  };
+  auto add_soil = [&](const Vec<Dim>& x, const InitialPoint& at, bool wet) {
+    const Mat<Dim> F = initial.soil_gradient(at.vertical_effective, wet ? 1.0 : 0.0);
+    sim.soil().add(x, Vec<Dim>::Zero(), s.soil.density * volume, volume / F.determinant());
+    sim.soil().F.back() = F;
+    if (s.loads) sim.soil().load.back() = load(x);
   };
   // Pore water: a whole water particle, or in the mixture the pores' part n.
   const double pores = s.mixture ? s.soil.porosity : 1.0;
@@ -318,11 +328,9 @@ void seed_particles(const Scene<Dim>& sc, Simulation<Dim>& sim, const mpi::Comm*
   sim.water().next_id = water_base + water_before;
   sim.soil().next_id = soil_base + soil_before;
   walk(first, last, [&](const Vec<Dim>& x, bool soil, bool water) {
-    if (soil) {
-      sim.soil().add(x, Vec<Dim>::Zero(), s.soil.density * volume, volume);
-      if (s.loads) sim.soil().load.back() = load(x);
-    }
-    if (water) add_water(x, soil ? pores : 1.0);
+    const InitialPoint at = initial.at(x, {soil, water});
+    if (soil) add_soil(x, at, water);
+    if (water) add_water(x, soil ? pores : 1.0, at.pressure);
   });
   // Every rank numbers on after the whole scene's particles (rank 0's inlet goes on from there).
   if (water_total >= 0) sim.water().next_id = water_base + water_total;

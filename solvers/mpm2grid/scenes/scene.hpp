@@ -37,6 +37,13 @@ struct TimeSettings {
   long long max_steps = 0; // stop with a checkpoint after this many steps of this run (0: never)
 };
 
+// How the particles start (docs/mpm2grid.md, "Initial state"; scenes/initial_state.hpp).
+struct InitialSettings {
+  bool geostatic = true;      // soil at its geostatic effective stresses (false: stress-free)
+  std::optional<double> k0;   // sigma'_h / sigma'_v; 1 - sin(phi) when not given
+  bool hydrostatic = true;    // water at the hydrostatic J under its free surface (false: J = 1)
+};
+
 template <int Dim>
 struct Scene {
   std::string name;
@@ -44,7 +51,9 @@ struct Scene {
   int particles_per_cell = 2;  // per axis
   std::vector<Region> water_regions, soil_regions;
   std::optional<double> hydrostatic_surface;  // y (m) of the free surface the water starts at rest
-                                              // under: p = rho_w g (surface - y), J from p
+                                              // under: p = rho_w g (surface - y), J from p (found
+                                              // per column when not given)
+  InitialSettings initial;
   TimeSettings time;
   std::string petsc_options;  // PETSc options database string for the consistent drag (prefix drag_)
   checkpoint::ScheduleSettings checkpoints;  // checkpoint: {every_steps, every (wall time), keep}
@@ -66,10 +75,11 @@ struct Seeded {
 template <int Dim>
 Seeded seeded_at(const Scene<Dim>& scene, const Vec<Dim>& x);
 
-// Particles on a regular lattice, particles_per_cell per axis in every cell, where the regions are;
-// water at the hydrostatic J under hydrostatic_surface if given (volume0 = lattice volume / J, so
-// that the particle fills its lattice cell at the hydrostatic pressure). Particle ids follow the
-// lattice's numbering (x fastest), per species.
+// Particles on a regular lattice, particles_per_cell per axis in every cell, where the regions are,
+// at rest in the scene's initial state (scenes/initial_state.hpp): water at the hydrostatic J,
+// soil at its geostatic F_E, each with volume0 = lattice volume / J (det F_E for the soil), so that
+// it fills its lattice cell at that stress. Particle ids follow the lattice's numbering (x
+// fastest), per species.
 // With a communicator of several ranks, each rank seeds a band of the lattice (whole layers
 // across its last axis) holding about its share of the particles, with the ids one rank would
 // give them; Simulation::distribute() then partitions. COLLECTIVE there.
