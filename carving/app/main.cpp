@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "carving/batch/manifest.hpp"
 #include "carving/batch/results_table.hpp"
 #include "carving/batch/run_batch.hpp"
+#include "carving/batch/seed_register.hpp"
 #include "carving/hull/carver.hpp"
 #include "carving/io/carve_input.hpp"
 #include "carving/measure/measure_seed.hpp"
@@ -145,8 +147,13 @@ int measure_one(const Arguments& a, suite::Logger& log) {
   if (seed.id.empty()) seed.id = "seed";
   seed.weight_mg = a.weight;
   const std::filesystem::path out = a.out.empty() ? "seedcarve-out" : a.out;
+  // The folder's other seeds keep their rows: the register orders the table (batch/seed_register.hpp).
+  const auto ids = suite::carving::register_seeds(out, {seed});
   const auto row = suite::carving::measure_seed(seed, profile, out / suite::carving::safe_folder_name(seed.id));
-  suite::carving::write_results(out / "results.csv", {row});
+  std::map<std::string, suite::carving::SeedRow> rows;
+  for (auto& r : suite::carving::read_results(out / "results.csv")) rows[r.id] = std::move(r);
+  rows[row.id] = row;
+  suite::carving::write_results(out / "results.csv", suite::carving::in_order(ids, std::move(rows)));
   suite::io::write_file_atomic(out / "profile_effective.yaml", profile.effective_yaml);
   if (!row.ok) throw suite::InputError(fmt::format("seed '{}' failed: {}", row.id, row.message));
   log.info("seed '{}' ({}, {} views): volume {:.4f} mm^3, {:.3f} x {:.3f} x {:.3f} mm{}; results in {}", row.id,

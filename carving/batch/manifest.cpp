@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <set>
 
 #include "core/config/suggest.hpp"
@@ -45,12 +46,19 @@ std::vector<SeedEntry> read_manifest(const std::filesystem::path& manifest) {
   };
   std::vector<SeedEntry> seeds;
   std::set<std::string> ids;
+  std::map<std::string, std::string> folders;  // safe folder name -> the id that has it
   for (std::size_t r = 0; r < table.rows(); ++r) {
     SeedEntry s;
     s.id = table.text(r, "id");
     const std::string where = fmt::format("{}: seed '{}' (row {})", manifest.string(), s.id, r + 1);
     if (s.id.empty()) throw InputError(fmt::format("{}: row {} has an empty id", manifest.string(), r + 1));
     if (!ids.insert(s.id).second) throw InputError(fmt::format("{}: the id appears twice; ids must be unique", where));
+    const auto [folder, fresh] = folders.emplace(safe_folder_name(s.id), s.id);
+    if (!fresh)
+      throw InputError(
+          fmt::format("{}: ids '{}' and '{}' would share the output folder '{}' (letters other than "
+                      "A-Z, a-z, 0-9, '-', '_' and '.' become '_'); rename one",
+                      where, folder->second, s.id, folder->first));
     const std::string images = table.text(r, "images");
     std::size_t start = 0;
     while (start <= images.size()) {

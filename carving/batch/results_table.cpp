@@ -88,4 +88,15 @@ void write_results(const std::filesystem::path& file, const std::vector<SeedRow>
   io::write_file_atomic(file, text);
 }
 
+std::vector<SeedRow> in_order(const std::vector<std::string>& ids, std::map<std::string, SeedRow> rows) {
+  std::vector<SeedRow> out;
+  for (const auto& id : ids)
+    if (auto it = rows.find(id); it != rows.end()) {
+      out.push_back(std::move(it->second));
+      rows.erase(it);
+    }
+  for (auto& [id, row] : rows) out.push_back(std::move(row));
+  return out;
+}
+
 }  // namespace suite::carving

@@ -4,6 +4,7 @@
 // them. Lengths in mm, volume in mm^3, surface in mm^2, density in mg/mm^3, wall time in s: the
 // header says so. A failed seed has status "failed" and the reason in `message`.
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ class ResultsWriter {
 
 // The rows of a results file (none if it does not exist); a torn last line is ignored.
 std::vector<SeedRow> read_results(const std::filesystem::path& file);
+
+// The rows of `ids` in that order, then any other rows (by id: a folder written before it had a
+// register), so that no row is lost.
+std::vector<SeedRow> in_order(const std::vector<std::string>& ids, std::map<std::string, SeedRow> rows);
 
 // Writes `rows` as a complete results file (atomically).
 void write_results(const std::filesystem::path& file, const std::vector<SeedRow>& rows);

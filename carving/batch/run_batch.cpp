@@ -13,6 +13,7 @@
 
 #include "carving/batch/manifest.hpp"
 #include "carving/batch/results_table.hpp"
+#include "carving/batch/seed_register.hpp"
 #include "carving/measure/measure_seed.hpp"
 #include "carving/measure/seed_profile.hpp"
 #include "core/config/config.hpp"
@@ -93,10 +94,7 @@ BatchCounts run_batch(const BatchOptions& options, Logger& log) {
     seeds = read_manifest(options.manifest);
     profiles = read_profiles(seeds, options.profile);
     if (!writer) return;
-    std::filesystem::create_directories(options.out);
-    std::string ids;
-    for (const auto& s : seeds) ids += s.id + "\n";
-    io::write_file_atomic(options.out / "seeds.txt", ids);
+    register_seeds(options.out, seeds);
     std::set<std::string> done;
     for (const auto& row : read_results(results_file(options)))
       if (row.ok || !options.retry_failed) done.insert(row.id);
@@ -154,12 +152,7 @@ BatchCounts run_batch(const BatchOptions& options, Logger& log) {
 }
 
 void merge_batch(const std::filesystem::path& out) {
-  std::ifstream in(out / "seeds.txt");
-  if (!in)
-    throw InputError(
-        fmt::format("'{}' is not a seed batch folder (no seeds.txt); run seedcarve batch into it first", out.string()));
-  std::vector<std::string> order;
-  for (std::string id; std::getline(in, id);) order.push_back(id);
+  const std::vector<std::string> order = registered_ids(out);
   std::map<std::string, SeedRow> newest;
   std::vector<std::filesystem::path> files;
   if (std::filesystem::exists(out / "results.csv")) files.push_back(out / "results.csv");
@@ -169,10 +162,7 @@ void merge_batch(const std::filesystem::path& out) {
   std::sort(files.begin() + (files.empty() || files[0].filename() != "results.csv" ? 0 : 1), files.end());
   for (const auto& f : files)
     for (auto& row : read_results(f)) newest[row.id] = std::move(row);
-  std::vector<SeedRow> rows;
-  for (const auto& id : order)
-    if (auto it = newest.find(id); it != newest.end()) rows.push_back(it->second);
-  write_results(out / "results.csv", rows);
+  write_results(out / "results.csv", in_order(order, std::move(newest)));
 }
 
 }  // namespace suite::carving

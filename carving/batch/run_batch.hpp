@@ -8,6 +8,8 @@
 //   measures failed ones again); a kill loses only the seeds being measured.
 // - A bad, missing or empty image, or a seed without a plausible contour, fails that seed's row
 //   with the reason; the batch goes on. A bad manifest or profile stops it before any seed.
+// - A batch into a folder that holds other seeds adds its seeds to them (batch/seed_register.hpp):
+//   the table keeps every seed's row, in the order the seeds were first given.
 // - Slurm array tasks: shard K of N measures the seeds with index % N == K into results.K.csv;
 //   merge_batch() then writes results.csv from the shards in manifest order.
 #include <cstddef>
@@ -37,7 +39,7 @@ struct BatchCounts {
 // COLLECTIVE over options.comm when given. Counts are complete on rank 0.
 BatchCounts run_batch(const BatchOptions& options, Logger& log);
 
-// results.csv from results.csv and every results.K.csv in `out`, in the manifest's order (the
+// results.csv from results.csv and every results.K.csv in `out`, in the register's order (the
 // ids in out/seeds.txt), the newest row of each seed winning.
 void merge_batch(const std::filesystem::path& out);
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "core/config/suggest.hpp"
 #include "core/errors.hpp"
@@ -72,7 +73,10 @@ CsvTable CsvTable::read(const std::filesystem::path& path) {
 CsvTable CsvTable::parse(const std::string& text, const std::string& source) {
   CsvTable t;
   t.source_ = source;
-  std::istringstream in(text);
+  // A spreadsheet's UTF-8 export may start with a byte-order mark: not part of the first column's name.
+  constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+  std::istringstream in(text.compare(0, kByteOrderMark.size(), kByteOrderMark) == 0 ? text.substr(kByteOrderMark.size())
+                                                                                    : text);
   std::string line;
   std::vector<std::string> fields;
   for (int number = 1; std::getline(in, line); ++number) {

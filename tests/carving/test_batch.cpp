@@ -156,6 +156,45 @@ TEST(SeedBatch, ArrayShardsMergeIntoTheManifestsOrder) {
   }
 }
 
+// A second manifest into the same folder adds its seeds' rows to the first's; an id the folder
+// holds with other images, and an id that would share another's seed folder, are refused before
+// anything is measured.
+TEST(SeedBatch, ASecondManifestAddsRowsAndConflictsAreRefused) {
+  const mpi::Comm self(MPI_COMM_SELF);
+  const mpi::Comm world(MPI_COMM_WORLD);
+  const auto dir = scratch_dir(world);
+  if (!world.is_root()) return;
+  make_batch(dir);
+  render_sphere(dir / "s4", 1.2);
+  Logger log(self, "test", {LogLevel::warn});
+  const BatchOptions first{dir / "manifest.csv", dir / "out", dir / "profile.yaml", false, 0, 0, nullptr};
+  run_batch(first, log);
+  ASSERT_EQ(read_results(dir / "out" / "results.csv").size(), 5u);
+  write(dir / "second.csv", "id,images\ns_4,s4\ns1,s1\n");
+  auto second = first;
+  second.manifest = dir / "second.csv";
+  const auto counts = run_batch(second, log);
+  EXPECT_EQ(counts.measured, 1u);
+  EXPECT_EQ(counts.skipped, 1u) << "s1, the same images as before";
+  const auto rows = read_results(dir / "out" / "results.csv");
+  ASSERT_EQ(rows.size(), 6u) << "the first manifest's rows are kept";
+  EXPECT_EQ(rows.front().id, "s1");
+  EXPECT_EQ(rows.back().id, "s_4");
+  const std::string before = read_file(dir / "out" / "results.csv");
+  write(dir / "other_images.csv", "id,images\ns1,s2\n");
+  auto other = first;
+  other.manifest = dir / "other_images.csv";
+  EXPECT_NE(input_error_of([&] {
+              run_batch(other, log);
+            }).find("seed 's1': '" + (dir / "out").string() + "' already holds it"),
+            std::string::npos);
+  write(dir / "shared_folder.csv", "id,images\ns.4,s4\ns 4,s3\n");
+  other.manifest = dir / "shared_folder.csv";
+  EXPECT_NE(input_error_of([&] { run_batch(other, log); }).find("already holds seed 's_4', whose folder 's_4'"),
+            std::string::npos);
+  EXPECT_EQ(read_file(dir / "out" / "results.csv"), before) << "a refused batch changes nothing";
+}
+
 TEST(Manifest, MistakesAreNamed) {
   const mpi::Comm self(MPI_COMM_SELF);
   const auto dir = scratch_dir(self);
@@ -170,6 +209,12 @@ TEST(Manifest, MistakesAreNamed) {
   EXPECT_NE(error_of("id,images,method\na,x,voxels\n").find("method 'voxels'; use carving or slicing"),
             std::string::npos);
   EXPECT_NE(error_of("id,images,weight_mg\na,x,-3\n").find("weight_mg = -3 must be > 0"), std::string::npos);
+  EXPECT_NE(error_of("id,images\ngraine \xC3\xA9 1,x\ngraine____1,y\n")
+                .find("ids 'graine \xC3\xA9 1' and 'graine____1' would share the output folder 'graine____1'"),
+            std::string::npos);
+  // A spreadsheet's byte-order mark before the header is not part of the first column's name.
+  write(dir / "bom.csv", "\xEF\xBB\xBFid,images\na,x\n");
+  EXPECT_EQ(read_manifest(dir / "bom.csv").at(0).id, "a");
   write(dir / "ok.csv", "id,images,profile\na,x;y.png ; z.png,p.yaml\n");
   const auto seeds = read_manifest(dir / "ok.csv");
   ASSERT_EQ(seeds[0].images.size(), 3u);
