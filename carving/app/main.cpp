@@ -1,6 +1,7 @@
 // seedcarve: seed volume, size and density from images (docs/methods/carving.md, issue 4).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "carving/batch/seed_register.hpp"
 #include "carving/hull/carver.hpp"
 #include "carving/io/carve_input.hpp"
+#include "carving/io/carve_output.hpp"
 #include "carving/measure/measure_seed.hpp"
 #include "carving/measure/seed_profile.hpp"
 #include "carving/render/render_scene.hpp"
@@ -40,68 +42,72 @@ using Option = suite::cli::OptionSpec;
 suite::cli::ProgramSpec program_spec() {
   const auto out = Option::text("out", "DIR", "output folder (created)");
   const auto profile = Option::text("profile", "PROFILE.yaml", "the seed profile: method, camera, segmentation");
-  return {"seedcarve",
-          "seedcarve: seed volume, size and density from images (docs/carving.md)",
-          {
-              CommandSpec{
-                  "measure",
-                  "one seed: IMAGES is a folder of views or the files (carving: every view in turntable order; "
-                  "slicing: the top view, then the side view); writes DIR/results.csv and DIR/<id>/",
-                  "IMAGES...",
-                  1,
-                  -1,
-                  true,
-                  {out, Option::text("profile", "PROFILE.yaml", "the seed profile: method, camera, segmentation", true),
-                   Option::text("id", "ID", "the seed's id in the table (default: the first image's name)"),
-                   Option::number("weight", "MG", "the seed's weight, for its density")}},
-              CommandSpec{"batch",
-                          "every seed of the manifest (columns id,images[,method,weight_mg,profile]); rows stream to "
-                          "DIR/results.csv; a rerun skips measured seeds; under mpiexec rank 0 hands seeds to the "
-                          "others; --shard K/N (Slurm array task K of N) writes DIR/results.K.csv",
-                          "MANIFEST.csv",
-                          1,
-                          1,
-                          false,
-                          {out, profile, Option::flag("retry-failed", "measure again the seeds that failed before"),
-                           Option::text("shard", "K/N", "Slurm array task K of N: its share of the seeds")}},
-              CommandSpec{"merge",
-                          "DIR/results.csv from the array tasks' DIR/results.K.csv, in manifest order",
-                          "DIR",
-                          1,
-                          1,
-                          false,
-                          {}},
-              CommandSpec{
-                  "carve",
-                  "carve the masks and projection matrices of a carve_input.dat file (Kansas State format); "
-                  "prints the kept voxels and the volume in mm^3",
-                  "CARVE_INPUT.dat",
-                  1,
-                  1,
-                  false,
-                  {Option::count("resolution", "N",
-                                 "voxels along each side of the file's box (default: the file's grid)", 1),
-                   Option::count("subvoxel", "S", "also the volume from S^3 sub-samples of each boundary voxel", 0)}},
-              CommandSpec{"render",
-                          "synthetic photographs and exact masks of an analytic seed, its true volume and a profile",
-                          "SCENE.yaml",
-                          1,
-                          1,
-                          true,
-                          {Option::text("out", "DIR", "output folder (created)", true)}},
-              CommandSpec{"calibrate",
-                          "KIND IMAGES...: 'ball' (px/mm and camera distance from a reference ball, --diameter), "
-                          "'chessboard' (K from chessboard photographs, --corners, --square) or 'axis' (the turntable "
-                          "axis from one turn of a seed, --profile); writes DIR/calibration.json and DIR/camera.yaml",
-                          "KIND IMAGES...",
-                          1,
-                          -1,
-                          true,
-                          {out, profile, Option::number("diameter", "MM", "ball: its diameter"),
-                           Option::number("focal", "PX", "ball: the focal length, if known"),
-                           Option::text("corners", "CxR", "chessboard: inner corners"),
-                           Option::number("square", "MM", "chessboard: the side of a square")}},
-          }};
+  return {
+      "seedcarve",
+      "seedcarve: seed volume, size and density from images (docs/carving.md)",
+      {
+          CommandSpec{
+              "measure",
+              "one seed: IMAGES is a folder of views or the files (carving: every view in turntable order; "
+              "slicing: the top view, then the side view); writes DIR/results.csv and DIR/<id>/",
+              "IMAGES...",
+              1,
+              -1,
+              true,
+              {out, Option::text("profile", "PROFILE.yaml", "the seed profile: method, camera, segmentation", true),
+               Option::text("id", "ID", "the seed's id in the table (default: the first image's name)"),
+               Option::number("weight", "MG", "the seed's weight, for its density")}},
+          CommandSpec{"batch",
+                      "every seed of the manifest (columns id,images[,method,weight_mg,profile]); rows stream to "
+                      "DIR/results.csv; a rerun skips measured seeds; under mpiexec rank 0 hands seeds to the "
+                      "others; --shard K/N (Slurm array task K of N) writes DIR/results.K.csv",
+                      "MANIFEST.csv",
+                      1,
+                      1,
+                      false,
+                      {out, profile, Option::flag("retry-failed", "measure again the seeds that failed before"),
+                       Option::text("shard", "K/N", "Slurm array task K of N: its share of the seeds")}},
+          CommandSpec{"merge",
+                      "DIR/results.csv from the array tasks' DIR/results.K.csv, in manifest order",
+                      "DIR",
+                      1,
+                      1,
+                      false,
+                      {}},
+          CommandSpec{
+              "carve",
+              "carve the masks and projection matrices of a carve_input.dat file (Kansas State format) as "
+              "the original program does (its grid, its positions, its initial occupancy); prints the kept "
+              "voxels and the volume in mm^3; with --out writes voxels.raw (the original's output layout) "
+              "and voxels.h5",
+              "CARVE_INPUT.dat",
+              1,
+              1,
+              false,
+              {Option::text("out", "DIR", "write voxels.raw and voxels.h5 into DIR (created)"),
+               Option::count("resolution", "N",
+                             "voxels along each side of the file's box, centred cells (default: the file's grid)", 1),
+               Option::count("subvoxel", "S", "also the volume from S^3 sub-samples of each boundary voxel", 0)}},
+          CommandSpec{"render",
+                      "synthetic photographs and exact masks of an analytic seed, its true volume and a profile",
+                      "SCENE.yaml",
+                      1,
+                      1,
+                      true,
+                      {Option::text("out", "DIR", "output folder (created)", true)}},
+          CommandSpec{"calibrate",
+                      "KIND IMAGES...: 'ball' (px/mm and camera distance from a reference ball, --diameter), "
+                      "'chessboard' (K from chessboard photographs, --corners, --square) or 'axis' (the turntable "
+                      "axis from one turn of a seed, --profile); writes DIR/calibration.json and DIR/camera.yaml",
+                      "KIND IMAGES...",
+                      1,
+                      -1,
+                      true,
+                      {out, profile, Option::number("diameter", "MM", "ball: its diameter"),
+                       Option::number("focal", "PX", "ball: the focal length, if known"),
+                       Option::text("corners", "CxR", "chessboard: inner corners"),
+                       Option::number("square", "MM", "chessboard: the side of a square")}},
+      }};
 }
 
 struct Arguments {
@@ -163,19 +169,48 @@ int measure_one(const Arguments& a, suite::Logger& log) {
   return 0;
 }
 
+// A carve_input.dat file as the original program carves it: its grid at its positions, its
+// initial occupancy honoured; or, with --resolution, the box's own cells at that resolution.
 int carve_file(const Arguments& a, suite::Logger& log) {
   const auto in = suite::carving::read_carve_input(a.targets[0]);
-  suite::carving::VoxelGrid grid = in.grid;
-  if (a.resolution > 0)
+  const bool pre_cleared = std::find(in.initial.begin(), in.initial.end(), 0) != in.initial.end();
+  suite::carving::VoxelGrid grid = in.original;
+  if (a.resolution > 0) {
+    if (pre_cleared)
+      throw suite::InputError(
+          fmt::format("{}: its initial occupancy clears voxels of its {} x {} x {} grid; drop "
+                      "--resolution to carve that grid",
+                      a.targets[0], in.grid.n[0], in.grid.n[1], in.grid.n[2]));
     grid = suite::carving::VoxelGrid::cube({0, 0, 0}, in.box_mm.maxCoeff(), static_cast<int>(a.resolution));
+  }
+  if (pre_cleared && a.subvoxel > 0)
+    throw suite::InputError(
+        fmt::format("{}: the sub-voxel volume does not honour the initial occupancy the file "
+                    "clears; drop --subvoxel",
+                    a.targets[0]));
+  const bool bytes_needed = pre_cleared || !a.out.empty();
   const auto start = std::chrono::steady_clock::now();
-  const auto r = suite::carving::carve(in.views, in.masks, grid, {static_cast<int>(a.subvoxel), false});
+  const auto r = suite::carving::carve(in.views, in.masks, grid, {static_cast<int>(a.subvoxel), bytes_needed});
+  long long kept = r.voxels;
+  std::vector<std::uint8_t> bytes;
+  if (bytes_needed) {
+    bytes = suite::carving::occupancy_bytes(r, a.resolution > 0 ? std::vector<std::uint8_t>{} : in.initial);
+    kept = std::count(bytes.begin(), bytes.end(), std::uint8_t{1});
+  }
+  const double volume = static_cast<double>(kept) * grid.voxel_volume();
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  log.info("{} views, {} x {} x {} voxels of {:.4g} mm: {} kept, {:.4f} mm^3{} in {:.3f} s", in.views.size(), grid.n[0],
-           grid.n[1], grid.n[2], grid.voxel.x(), r.voxels, r.volume_mm3,
-           a.subvoxel > 0 ? fmt::format(" ({:.4f} mm^3 with {}^3 sub-samples)", r.subvoxel_volume_mm3, a.subvoxel) : "",
-           s);
-  std::printf("%lld %.6f %.6f\n", r.voxels, r.volume_mm3, r.subvoxel_volume_mm3);
+  log.info(
+      "{} views, {} x {} x {} voxels of {:.4g} mm{}: {} kept, {:.4f} mm^3{} in {:.3f} s", in.views.size(), grid.n[0],
+      grid.n[1], grid.n[2], grid.voxel.x(),
+      pre_cleared ? fmt::format(" ({} cleared beforehand)", std::count(in.initial.begin(), in.initial.end(), 0)) : "",
+      kept, volume,
+      a.subvoxel > 0 ? fmt::format(" ({:.4f} mm^3 with {}^3 sub-samples)", r.subvoxel_volume_mm3, a.subvoxel) : "", s);
+  if (!a.out.empty()) {
+    suite::carving::write_carve_output(a.out, grid, bytes);
+    log.info("voxels in {} and {}", (std::filesystem::path(a.out) / "voxels.raw").string(),
+             (std::filesystem::path(a.out) / "voxels.h5").string());
+  }
+  std::printf("%lld %.6f %.6f\n", kept, volume, a.subvoxel > 0 ? r.subvoxel_volume_mm3 : volume);
   return 0;
 }
 

@@ -85,6 +85,8 @@ CarveInput read_carve_input(const std::filesystem::path& file) {
   c.grid.n = n;
   c.grid.lo = -c.box_mm / 2;
   c.grid.voxel = c.box_mm.cwiseQuotient(Eigen::Vector3d(n[0], n[1], n[2]));
+  c.original = c.grid;
+  c.original.lo += c.grid.voxel;
   return c;
 }
 
