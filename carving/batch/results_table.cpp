@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -20,10 +21,10 @@ std::string number(double x) {
 }
 
 std::string format_row(const SeedRow& r) {
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.3f},{}", io::csv_field(r.id), r.method, number(r.length_mm),
-                     number(r.width_mm), number(r.thickness_mm), number(r.volume_mm3), number(r.surface_mm2),
-                     number(r.density_mg_mm3), r.n_views, r.ok ? "ok" : "failed", io::csv_field(r.message), r.wall_s,
-                     io::csv_field(r.host));
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{:.3f},{}", io::csv_field(r.id), r.method,
+                     number(r.length_mm), number(r.width_mm), number(r.thickness_mm), number(r.volume_mm3),
+                     number(r.surface_mm2), number(r.density_mg_mm3), r.n_views, r.ok ? "ok" : "failed",
+                     io::csv_field(r.quality), io::csv_field(r.message), r.wall_s, io::csv_field(r.host));
 }
 
 std::string header() {
@@ -35,9 +36,20 @@ std::string header() {
 const std::vector<std::string>& results_columns() {
   static const std::vector<std::string> columns = {
       "id",      "method", "length_mm", "width_mm", "thickness_mm", "volume_mm3", "surface_mm2", "density_mg_mm3",
-      "n_views", "status", "message",   "wall_s",   "host"};
+      "n_views", "status", "quality",   "message",  "wall_s",       "host"};
   return columns;
 }
+
+namespace {
+
+// The columns before `quality` was added.
+bool legacy_columns(const std::vector<std::string>& columns) {
+  std::vector<std::string> legacy = results_columns();
+  legacy.erase(std::find(legacy.begin(), legacy.end(), "quality"));
+  return columns == legacy;
+}
+
+}  // namespace
 
 ResultsWriter::ResultsWriter(const std::filesystem::path& file) : log_(file, "seed results table") {
   std::error_code ec;
@@ -56,7 +68,8 @@ std::vector<SeedRow> read_results(const std::filesystem::path& file) {
   text.resize(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);  // a torn last line is not a row
   if (text.empty()) return rows;
   const io::CsvTable t = io::CsvTable::parse(text, file.string());
-  if (t.columns() != results_columns())
+  const bool legacy = legacy_columns(t.columns());
+  if (t.columns() != results_columns() && !legacy)
     throw InputError(
         fmt::format("'{}' is not a seedcarve results table (its columns are {}); move it away or "
                     "choose another output folder",
@@ -74,6 +87,7 @@ std::vector<SeedRow> read_results(const std::filesystem::path& file) {
     s.density_mg_mm3 = value(r, "density_mg_mm3");
     s.n_views = static_cast<int>(t.number(r, "n_views"));
     s.ok = t.text(r, "status") == "ok";
+    if (!legacy) s.quality = t.text(r, "quality");
     s.message = t.text(r, "message");
     s.wall_s = t.number(r, "wall_s");
     s.host = t.text(r, "host");

@@ -2,7 +2,8 @@
 // A seed batch's results table (docs/methods/carving.md, "Batch"): one CSV row per seed, appended and
 // flushed as each seed finishes, so a killed batch keeps every finished seed and a rerun skips
 // them. Lengths in mm, volume in mm^3, surface in mm^2, density in mg/mm^3, wall time in s: the
-// header says so. A failed seed has status "failed" and the reason in `message`.
+// header says so. A failed seed has status "failed" and the reason in `message`; `quality` holds
+// flags on a seed measured with a caveat (a table without the column, from before it, reads too).
 #include <filesystem>
 #include <map>
 #include <string>
@@ -18,6 +19,7 @@ struct SeedRow {
   double surface_mm2 = 0, density_mg_mm3 = 0;  // NaN: not measured (written empty)
   int n_views = 0;
   bool ok = false;
+  std::string quality;  // flags on a measured seed, ';'-separated (docs/carving.md, "Quality checks")
   std::string message;
   double wall_s = 0;
   std::string host;

@@ -40,6 +40,7 @@ std::string encode(const SeedRow& r) {
                           number(r.surface_mm2), number(r.density_mg_mm3)}},
                         {"n_views", r.n_views},
                         {"ok", r.ok},
+                        {"quality", r.quality},
                         {"message", r.message},
                         {"wall_s", r.wall_s},
                         {"host", r.host}}
@@ -56,6 +57,7 @@ SeedRow decode(const std::string& text) {
   r.volume_mm3 = number(d[3]), r.surface_mm2 = number(d[4]), r.density_mg_mm3 = number(d[5]);
   r.n_views = j.at("n_views").get<int>();
   r.ok = j.at("ok").get<bool>();
+  r.quality = j.at("quality").get<std::string>();
   r.message = j.at("message").get<std::string>();
   r.wall_s = j.at("wall_s").get<double>();
   r.host = j.at("host").get<std::string>();

@@ -4,9 +4,11 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
+#include "carving/measure/silhouette_agreement.hpp"
 #include "carving/mesh/marching_cubes.hpp"
 #include "core/errors.hpp"
 
@@ -147,6 +149,18 @@ HullMeasurement measure_hull(const std::vector<View>& views, const std::vector<M
   HullMeasurement m;
   m.grid = box_grid(lo, hi, options.resolution);
   const CarveResult fine = carve(views, masks, m.grid, {options.subvoxel_samples, true});
+  for (int a = 0; a < 3; ++a)
+    if (fine.voxels > 0 && (fine.first[a] == 0 || fine.last[a] == m.grid.n[a] - 1))
+      throw InputError(
+          fmt::format("the seed's hull reaches the border of its {:.3g} x {:.3g} x {:.3g} mm carving box "
+                      "(axis {}): it is cut off there; the coarse search (carving.search_resolution = "
+                      "{}) missed part of the seed, give a finer one",
+                      m.grid.n[0] * m.grid.voxel.x(), m.grid.n[1] * m.grid.voxel.y(), m.grid.n[2] * m.grid.voxel.z(),
+                      "xyz"[a], options.search_resolution));
+  const auto check_start = std::chrono::steady_clock::now();
+  m.coverage =
+      silhouette_coverage(views, masks, carve(views, masks, box_grid(lo, hi, kAgreementResolution), {0, true}));
+  m.coverage_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - check_start).count();
   m.voxels = fine.voxels;
   m.volume_mm3 = fine.subvoxel_volume_mm3;
   m.stats = fine.stats;

@@ -27,7 +27,7 @@ struct HullOptions {
   std::optional<Eigen::Vector3d> search_centre;
   std::optional<double> search_side_mm;
   bool mesh = true;
-  int mesh_resolution = 128;  // voxels along the longest side for the surface
+  int mesh_resolution = 128;    // voxels along the longest side for the surface
   bool keep_occupancy = false;  // keep the occupancy fractions the mesh is made from (HDF5 output)
 };
 
@@ -39,12 +39,18 @@ struct HullMeasurement {
   VoxelGrid grid;                                      // the carved box
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // principal axes (columns: length, width, thickness)
   SurfaceMesh mesh;
-  ScalarField occupancy;   // at mesh_resolution, when options.keep_occupancy (and mesh)
-  CarveStats stats;  // of the fine carve
+  ScalarField occupancy;  // at mesh_resolution, when options.keep_occupancy (and mesh)
+  CarveStats stats;       // of the fine carve
+  // Per view, the part of its silhouette the hull's image covers (measure/silhouette_agreement.hpp),
+  // from a carve of the seed's box at kAgreementResolution voxels along its longest side.
+  std::vector<double> coverage;
+  double coverage_s = 0;  // wall time of that check, s
 };
 
-// Throws InputError when no voxel survives (the silhouettes and cameras do not agree) or the
-// seed touches the searched region's border (it may be cut off).
+inline constexpr int kAgreementResolution = 64;
+
+// Throws InputError when no voxel survives (the silhouettes and cameras do not agree), or the
+// seed touches the searched region's border or its own carving box's (it may be cut off).
 HullMeasurement measure_hull(const std::vector<View>& views, const std::vector<Mask>& masks,
                              const HullOptions& options);
 

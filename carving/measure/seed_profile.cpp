@@ -58,6 +58,7 @@ CameraProfile read_camera_profile(const config::Section& s) {
   }
   c.first_angle = s.quantity("first_angle", "rad", 0.0);  // projection files: used by frame_origin: auto
   if (s.has("step")) c.step = s.quantity("step", "rad", config::Range::positive());
+  if (s.has("views")) c.views = static_cast<int>(s.integer("views", 36, 1, 10000));
   bool is_auto = false;
   if (s.has("frame_origin")) try {
       is_auto = s.get<std::string>("frame_origin") == "auto";
@@ -92,7 +93,8 @@ SeedProfile read_seed_profile(const config::Config& cfg) {
     p.hull.mesh = c.get<bool>("mesh", true);
     p.hull.mesh_resolution = static_cast<int>(c.integer("mesh_resolution", 128, 8, 1024));
     p.hull.keep_occupancy = c.get<bool>("voxels_h5", false);
-    if (p.hull.keep_occupancy && !p.hull.mesh) c.reject("voxels_h5", "the voxel output is the mesh's grid; set mesh: true");
+    if (p.hull.keep_occupancy && !p.hull.mesh)
+      c.reject("voxels_h5", "the voxel output is the mesh's grid; set mesh: true");
   } else {
     const auto s = root.section("slicing");
     p.slicing.slices = static_cast<int>(s.integer("slices", 50, 1, 100000));

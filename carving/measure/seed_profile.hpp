@@ -17,6 +17,7 @@
 //     distance: 93.108 mm           # camera centre to the turntable axis
 //     first_angle: 0 deg
 //     step: 10 deg                  # default: a full turn over the images
+//     views: 36                     # optional: a seed with another number of images fails
 //     frame_origin: [220, 38]       # where the calibrated image's pixel (0, 0) lies in the
 //                                   # photographs, or `auto` (found from the turn itself)
 //     frame_scale: 1                # photograph px per calibrated px (crops that were resized)
@@ -46,6 +47,7 @@ struct CameraProfile {
   double px_per_mm = 0;                 // parallel
   double first_angle = 0;               // radians
   std::optional<double> step;           // radians; default 2 pi / images
+  std::optional<int> views;             // the images a seed must have (carving), when given
   std::vector<Projection> projections;  // projection_file
   std::filesystem::path projection_file;
   bool auto_frame_origin = false;

@@ -118,6 +118,7 @@ RenderSummary render_scene(const config::Config& scene, const std::filesystem::p
     profile += fmt::format("  principal_point: [{:.10g}, {:.10g}]\n  first_angle: {:.12g} deg\n", camera.K.cx,
                            camera.K.cy, camera.first_angle * 180 / std::numbers::pi);
     if (camera.step) profile += fmt::format("  step: {:.12g} deg\n", *camera.step * 180 / std::numbers::pi);
+    profile += fmt::format("  views: {}\n", views);
     profile += fmt::format("  frame_origin: [{:.10g}, {:.10g}]\n", camera.frame_origin.x(), camera.frame_origin.y());
   } else {
     const double px_per_mm = camera.model == "parallel" ? camera.px_per_mm : camera.K.focal_px / camera.distance_mm;

@@ -225,8 +225,8 @@ TEST(Manifest, MistakesAreNamed) {
 TEST(ResultsTable, RowsRoundTripWithQuotedMessages) {
   const mpi::Comm self(MPI_COMM_SELF);
   const auto dir = scratch_dir(self);
-  SeedRow a{"a,1", "carving", 7.1, 3.5, 2.9, 39.25, 60.5, 1.1, 36, true, "", 0.25, "node1"};
-  SeedRow b{"b", "slicing", NAN, NAN, NAN, NAN, NAN, NAN, 2, false, "view 2 ('x.png'): no contour, \"really\"",
+  SeedRow a{"a,1", "carving", 7.1, 3.5, 2.9, 39.25, 60.5, 1.1, 36, true, "touches_frame", "", 0.25, "node1"};
+  SeedRow b{"b", "slicing", NAN, NAN, NAN, NAN, NAN, NAN, 2, false, "", "view 2 ('x.png'): no contour, \"really\"",
             0.5, "n"};
   {
     ResultsWriter w(dir / "r.csv");
@@ -238,6 +238,15 @@ TEST(ResultsTable, RowsRoundTripWithQuotedMessages) {
   EXPECT_EQ(rows[0].id, "a,1");
   EXPECT_DOUBLE_EQ(rows[0].volume_mm3, 39.25);
   EXPECT_EQ(rows[1].message, b.message);
+  EXPECT_EQ(rows[0].quality, "touches_frame");
+  // A table from before the quality column reads, its rows without flags.
+  write(dir / "legacy.csv",
+        "id,method,length_mm,width_mm,thickness_mm,volume_mm3,surface_mm2,density_mg_mm3,n_views,status,message,"
+        "wall_s,host\nold,carving,1,1,1,0.5,3,,36,ok,,0.1,n\n");
+  const auto legacy = read_results(dir / "legacy.csv");
+  ASSERT_EQ(legacy.size(), 1u);
+  EXPECT_TRUE(legacy[0].ok);
+  EXPECT_EQ(legacy[0].quality, "");
   EXPECT_TRUE(std::isnan(rows[1].volume_mm3));
   write(dir / "other.csv", "id,volume\nx,1\n");
   EXPECT_NE(input_error_of([&] { read_results(dir / "other.csv"); }).find("is not a seedcarve results table"),
