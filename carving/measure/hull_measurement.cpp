@@ -103,17 +103,49 @@ ScalarField occupancy_field(const CarveResult& r) {
 
 }  // namespace
 
-double pixels_per_mm_at_origin(const View& view) {
-  const Eigen::Vector2d o = project(view.P, Eigen::Vector3d::Zero());
-  const Eigen::Vector2d y = project(view.P, Eigen::Vector3d(0, 1e-3, 0));
+double pixels_per_mm_at(const View& view, const Eigen::Vector3d& X) {
+  const Eigen::Vector2d o = project(view.P, X);
+  const Eigen::Vector2d y = project(view.P, X + Eigen::Vector3d(0, 1e-3, 0));
   return (y - o).norm() / 1e-3;
 }
 
-VoxelGrid search_cube(const std::vector<View>& views, const HullOptions& options, int resolution) {
+VoxelGrid search_cube(const std::vector<View>& views, const HullOptions& options, int resolution,
+                      const Eigen::Vector3d& centre) {
+  const Eigen::Vector3d at = options.search_centre.value_or(centre);
   double side = std::numeric_limits<double>::infinity();
-  for (const View& v : views) side = std::min(side, std::min(v.width, v.height) / pixels_per_mm_at_origin(v));
+  for (const View& v : views) side = std::min(side, std::min(v.width, v.height) / pixels_per_mm_at(v, at));
   if (options.search_side_mm) side = *options.search_side_mm;
-  return VoxelGrid::cube(options.search_centre.value_or(Eigen::Vector3d::Zero()), side, resolution);
+  return VoxelGrid::cube(at, side, resolution);
+}
+
+Eigen::Vector3d silhouette_centre(const std::vector<View>& views, const std::vector<Mask>& masks) {
+  // Each line of sight through pixel (u, v) is where two planes meet:
+  //   (P_0 - u P_2) X = 0 and (P_1 - v P_2) X = 0 (X homogeneous), for pinhole and parallel views.
+  // The point minimising the squared distances to all the planes (each normalised).
+  Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d Atb = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < views.size(); ++k) {
+    const Mask& m = masks[k];
+    double sx = 0, sy = 0;
+    long long n = 0;
+    for (int y = 0; y < m.height(); ++y)
+      for (int x = 0; x < m.width(); ++x)
+        if (m.at(x, y)) sx += x, sy += y, ++n;
+    if (n == 0) continue;
+    const Eigen::Vector2d c(sx / static_cast<double>(n), sy / static_cast<double>(n));
+    const Projection& P = views[k].P;
+    for (int r = 0; r < 2; ++r) {
+      const Eigen::Matrix<double, 1, 4> plane = P.row(r) - c[r] * P.row(2);
+      const double norm = plane.head<3>().norm();
+      if (!(norm > 0)) continue;
+      const Eigen::Vector3d a = plane.head<3>().transpose() / norm;
+      AtA += a * a.transpose();
+      Atb += a * (-plane(3) / norm);
+    }
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(AtA);
+  if (!(eigen.eigenvalues()[0] > 1e-9 * std::max(1.0, eigen.eigenvalues()[2]))) return Eigen::Vector3d::Zero();
+  return AtA.ldlt().solve(Atb);
 }
 
 HullMeasurement measure_hull(const std::vector<View>& views, const std::vector<Mask>& masks,
@@ -124,7 +156,7 @@ HullMeasurement measure_hull(const std::vector<View>& views, const std::vector<M
     throw InputError(fmt::format("carving.search_resolution = {}: give 8 to 512", options.search_resolution));
   if (views.empty()) throw InputError("carving needs at least one view");
   // 1. Find the seed in the region all cameras see.
-  const VoxelGrid search = search_cube(views, options, options.search_resolution);
+  const VoxelGrid search = search_cube(views, options, options.search_resolution, silhouette_centre(views, masks));
   const double side = search.voxel.x() * search.n[0];
   const CarveResult coarse = carve(views, masks, search);
   if (coarse.voxels == 0)

@@ -22,8 +22,8 @@ struct HullOptions {
   int resolution = 256;        // voxels along the longest side of the seed's box
   int subvoxel_samples = 0;    // s^3 samples in boundary voxels (0: voxel centres)
   int search_resolution = 48;  // voxels per side of the coarse search carve
-  // The searched cube; default: centred on the world origin (the turntable axis), as large as
-  // the smallest image shows at the origin's distance.
+  // The searched cube; default: centred where the views' silhouettes meet (silhouette_centre),
+  // as large as the smallest image shows at that point.
   std::optional<Eigen::Vector3d> search_centre;
   std::optional<double> search_side_mm;
   bool mesh = true;
@@ -55,11 +55,18 @@ HullMeasurement measure_hull(const std::vector<View>& views, const std::vector<M
                              const HullOptions& options);
 
 // The cube measure_hull() searches for the seed: options.search_side_mm and search_centre, by
-// default centred on the origin and as large as the smallest image shows at the origin, with
-// `resolution` voxels per side.
-VoxelGrid search_cube(const std::vector<View>& views, const HullOptions& options, int resolution);
+// default centred on `centre` and as large as the smallest image shows there, with `resolution`
+// voxels per side.
+VoxelGrid search_cube(const std::vector<View>& views, const HullOptions& options, int resolution,
+                      const Eigen::Vector3d& centre = Eigen::Vector3d::Zero());
 
-// Pixels per mm at the world origin in `view` (the scale of the turntable axis in the image).
-double pixels_per_mm_at_origin(const View& view);
+// The point nearest (least squares) to the lines of sight through every silhouette's centroid:
+// where the seed is, whatever world frame the cameras are calibrated in (a projection-matrix set
+// need not put the seed at its origin). The world origin when the lines do not fix a point (one
+// view, or all views along one direction).
+Eigen::Vector3d silhouette_centre(const std::vector<View>& views, const std::vector<Mask>& masks);
+
+// Pixels per mm at the point X in `view` (at the world origin: the scale of a turntable's axis).
+double pixels_per_mm_at(const View& view, const Eigen::Vector3d& X = Eigen::Vector3d::Zero());
 
 }  // namespace suite::carving

@@ -3,6 +3,7 @@
 // unreadable files and bad options are InputErrors that name the file or option.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -89,6 +90,29 @@ TEST(Segmentation, RenderedEllipsoidSegmentsToItsExactMask) {
     for (int x = 2; x < view.mask.width(); ++x)
       shifted[static_cast<std::size_t>(y) * view.mask.width() + x] = view.mask.at(x - 2, y);
   EXPECT_LT(intersection_over_union(Mask(view.mask.width(), view.mask.height(), shifted), view.mask), kMinIoU);
+}
+
+// A red seed's hues straddle 0: OpenCV's H runs 0..180, and red shaded by the renderer's lighting
+// and noise comes out near 0 and near 180 both. A range whose low hue exceeds its high hue wraps
+// through red (docs/carving.md, "Profiles"); either half alone loses much of the seed.
+TEST(Segmentation, HueRangeWrapsThroughRed) {
+  RenderOptions o = photographic();
+  o.seed_bgr = {45, 45, 230};  // pure red (hue 0): the noise puts its pixels either side of 0
+  const RenderedView view = render(wheat(), parallel_view(40), o);
+  SegmentationOptions red;
+  red.hsv_low = {170, 80, 40};
+  red.hsv_high = {10, 255, 255};
+  const Segmentation s = segment(view.image, red);
+  ASSERT_TRUE(s.found) << s.reason;
+  const double iou = intersection_over_union(s.mask, view.mask);
+  std::printf("[ info ] hue range through red: IoU %.5f\n", iou);
+  EXPECT_GT(iou, kMinIoU);
+  for (const auto& half : {std::array<int, 2>{170, 180}, std::array<int, 2>{0, 10}}) {
+    SegmentationOptions part = red;
+    part.hsv_low[0] = half[0], part.hsv_high[0] = half[1];
+    const Segmentation p = segment(view.image, part);
+    EXPECT_LT(p.found ? intersection_over_union(p.mask, view.mask) : 0.0, kMinIoU) << half[0] << ".." << half[1];
+  }
 }
 
 TEST(Segmentation, AutomaticOtsuThresholdFindsTheSeed) {
