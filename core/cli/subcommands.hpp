@@ -13,7 +13,6 @@
 #include <utility>
 #include <vector>
 
-#include "core/cli/command_line.hpp"
 
 namespace suite::cli {
 
