@@ -23,7 +23,7 @@ Parsed parse(const Spec& spec, int argc, const char* const* argv) {
                  spec.scene_required
                      ? "scene YAML file, then key.path=value overrides"
                      : "scene YAML file (default: the embedded demo scene), then key.path=value overrides");
-  app.add_option("-o,--out", cl.out, "output folder (created)")->capture_default_str();
+  CLI::Option* out = app.add_option("-o,--out", cl.out, "output folder (created)")->capture_default_str();
   app.add_option("--restart", restart, "continue from a checkpoint file, or 'latest' in the output folder");
   app.add_option("--log-level", cl.log_level, "debug, info, warn, error or off")
       ->check(CLI::IsMember({"debug", "info", "warn", "error", "off"}))
@@ -71,6 +71,7 @@ Parsed parse(const Spec& spec, int argc, const char* const* argv) {
     return result;
   }
   if (!restart.empty()) cl.restart = restart;
+  cl.out_given = out->count() > 0;
   if (dakota.size() == 2)
     cl.dakota = std::make_pair(std::filesystem::path(dakota[0]), std::filesystem::path(dakota[1]));
   cl.argv.assign(argv, argv + argc);

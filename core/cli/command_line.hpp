@@ -26,6 +26,7 @@ struct CommandLine {
   std::optional<std::filesystem::path> scene;
   std::vector<std::string> overrides;  // "key.path=value", in order
   std::filesystem::path out;
+  bool out_given = false;              // --out was on the command line (not the default)
   std::optional<std::string> restart;  // a checkpoint file, or "latest"
   // --dakota PARAMS RESULTS: run as a Dakota analysis driver (read the parameters file, write
   // the results file); for executables that support it.

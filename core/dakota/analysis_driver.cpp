@@ -1,6 +1,7 @@
 #include "core/dakota/analysis_driver.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cstdio>
 #include <fstream>
@@ -42,6 +43,22 @@ int run_analysis_driver(const mpi::Comm& comm, const std::string& program, const
   std::stringstream text;
   text << in.rdbuf();
   const auto p = read_parameters(text.str(), parameters.string());
+  // The active set vector: per response, 1 asks for its value, 2 its gradient, 4 its Hessian; the
+  // results file holds exactly what it asks for. The suite's models return values only, so a
+  // derivative or metadata request is the study's to change, before anything runs.
+  for (std::size_t i = 0; i < p.asv.size(); ++i)
+    if (p.asv[i] & 6)
+      throw InputError(fmt::format(
+          "{}: response '{}' asks for its {} (ASV {}); {} returns function values only: give Dakota's responses "
+          "block numerical_gradients{}",
+          parameters.string(), p.responses[i], p.asv[i] & 2 ? "gradient" : "Hessian", p.asv[i], program,
+          p.asv[i] & 4 ? " and no_hessians (or numerical_hessians)" : ""));
+  if (!p.metadata.empty())
+    throw InputError(
+        fmt::format("{}: the study asks for metadata ({}); {} returns none: drop the metadata from "
+                    "Dakota's responses block",
+                    parameters.string(), fmt::join(p.metadata, ", "), program));
+  const auto wanted = [&](std::size_t i) { return p.asv.empty() || (p.asv[i] & 1); };
   std::vector<std::string> all = overrides;
   for (const auto& [name, value] : p.variables) all.push_back(fmt::format("{}={:.17g}", name, value));
 
@@ -49,10 +66,12 @@ int run_analysis_driver(const mpi::Comm& comm, const std::string& program, const
   std::vector<std::pair<std::string, double>> values;
   try {
     const auto summary = evaluate(all);
-    for (const auto& r : p.responses) {
+    for (std::size_t i = 0; i < p.responses.size(); ++i) {
+      const std::string& r = p.responses[i];
       if (!summary.contains(r) || r == "units")
         throw InputError(fmt::format("{}: response '{}' is not a key of {}'s summary.json (see its docs)",
                                      parameters.string(), r, program));
+      if (!wanted(i)) continue;  // ASV 0: this evaluation does not ask for it
       const auto& v = summary.at(r);
       if (!(v.is_number() || v.is_boolean())) {
         failure = fmt::format("response '{}' has no value in this run", r);

@@ -11,7 +11,10 @@
 // understands, exit status 0) when the scene rejects the values Dakota chose (a negative kd),
 // when `evaluate` throws EvaluationFailed (the run did not finish), or when a response has no
 // value in this run. A broken parameters file, a variable that is not a scene key and a
-// response that is not a summary key are the user's to fix: InputError.
+// response that is not a summary key are the user's to fix: InputError. The active set vector is
+// honoured: a response with ASV 0 is left out of the results file; a gradient or Hessian request
+// (ASV 2, 4) or metadata is an InputError naming the response and Dakota's numerical_gradients,
+// since the models return values only.
 #include <filesystem>
 #include <functional>
 #include <stdexcept>

@@ -16,6 +16,8 @@ TEST(CommandLine, SceneThenOverridesThenOptions) {
   EXPECT_EQ(p.command_line->scene->string(), "dam.yaml");
   EXPECT_EQ(p.command_line->overrides, (std::vector<std::string>{"soil.cohesion=5kPa", "steps=10"}));
   EXPECT_EQ(p.command_line->out.string(), "run1");
+  EXPECT_TRUE(p.command_line->out_given);
+  EXPECT_FALSE(parse({"dam.yaml"}).command_line->out_given) << "the default folder is not given";
   EXPECT_EQ(p.command_line->restart.value_or(""), "latest");
   EXPECT_EQ(p.command_line->argv.size(), 8u);
 }
