@@ -60,6 +60,24 @@ TEST(BreachModel, DefaultSceneBreaches) {
   EXPECT_GT(r.eroded_volume, 0.0);
 }
 
+// A run that ends while the outflow still rises reports that its peak is not the event's: the
+// storm's rising limb cut at 4 h (inflow peak at 6 h), and a slowly eroding dam (kd = 6
+// cm^3/(N s)) whose breach outflow peaks at 11.4 h, cut at 10 h (its run's peak is then the
+// storm's, below the breach's to come). Run to 24 h, both events finish inside the run.
+TEST(BreachModel, ARunEndingOnARisingOutflowSaysTheEventHadNotFinished) {
+  EXPECT_FALSE(run().rising_at_end);
+  const Result cut = run({"time.end=4 h"});
+  EXPECT_TRUE(cut.rising_at_end);
+  EXPECT_NEAR(cut.time_to_peak, 4 * 3600.0, 1.0);
+  const Result slow = run({"soil.erodibility=6 cm^3/(N s)"});
+  EXPECT_FALSE(slow.rising_at_end);
+  EXPECT_GT(slow.time_to_peak, 10 * 3600.0);
+  const Result slow_cut = run({"soil.erodibility=6 cm^3/(N s)", "time.end=10 h"});
+  EXPECT_TRUE(slow_cut.failed());
+  EXPECT_TRUE(slow_cut.rising_at_end);
+  EXPECT_LT(slow_cut.peak_outflow, slow.peak_outflow);
+}
+
 TEST(BreachModel, ReservoirMassBalanceClosesToRoundOff) {
   const std::vector<std::vector<std::string>> cases = {
       {},

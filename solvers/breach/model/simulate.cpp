@@ -301,6 +301,14 @@ Result Run::run() {
   r.peak_outflow = total_peak_.value();
   r.time_to_peak = total_peak_.time() - ts.start;
   r.peak_breach_outflow = breach_peak_.value();
+  // dQ/dt at the end, along the solution: the state a second on by its final slope.
+  {
+    constexpr double probe = 1.0;  // s
+    StateVector ahead = y_;
+    for (std::size_t i = 0; i < ahead.size(); ++i) ahead[i] += probe * k1_[i];
+    const double rate = (model_.flows(t_ + probe, ahead, stage_).total() - f.total()) / probe;
+    r.rising_at_end = rate > 1e-9 * std::max(1.0, r.peak_outflow);
+  }
   r.final_stage = stage_;
   r.final_level = f.level;
   r.final_invert = model_.invert(y_, stage_);

@@ -34,6 +34,9 @@ struct Result {
   double peak_outflow = 0.0;                                                       // m^3/s, breach + crest + spillway
   double time_to_peak = 0.0;                                                       // s from time.start
   double peak_breach_outflow = 0.0;                                                // m^3/s, through the breach alone
+  // The outflow was still rising when the run ended: the peak above is the run's, not the
+  // event's, which had not finished; a later time.end finds the event's.
+  bool rising_at_end = false;
   std::optional<double> headcut_formation_time, initiation_time, foundation_time;  // s from start
   bool failed() const { return initiation_time.has_value(); }
   Stage final_stage = Stage::surface_erosion;

@@ -40,13 +40,18 @@ double or_nan(const std::optional<double>& v) {
 
 }  // namespace
 
-const std::vector<io::CsvColumn>& hydrograph_columns() { return kColumns; }
+const std::vector<io::CsvColumn>& hydrograph_columns() {
+  return kColumns;
+}
 
 std::vector<double> hydrograph_row(const Sample& s) {
   const Flows& f = s.flows;
-  return {s.time, f.inflow, f.total(), f.breach, f.crest, f.spillway, f.level, f.storage,
-          static_cast<double>(static_cast<int>(s.stage)), s.stress, s.face_erosion, s.headcut_position,
-          s.headcut_height, s.invert, s.bottom_width, s.top_width, s.eroded_volume};
+  return {s.time,           f.inflow,       f.total(),
+          f.breach,         f.crest,        f.spillway,
+          f.level,          f.storage,      static_cast<double>(static_cast<int>(s.stage)),
+          s.stress,         s.face_erosion, s.headcut_position,
+          s.headcut_height, s.invert,       s.bottom_width,
+          s.top_width,      s.eroded_volume};
 }
 
 Summary make_summary(const Result& r) {
@@ -54,6 +59,7 @@ Summary make_summary(const Result& r) {
   s.set("peak_outflow", r.peak_outflow, "m^3/s");
   s.set("time_to_peak", r.time_to_peak, "s");
   s.set("peak_breach_outflow", r.peak_breach_outflow, "m^3/s");
+  s.set("event_finished", !r.rising_at_end);  // false: the outflow still rises at time.end
   s.set("failed", r.failed());
   s.set("breach_initiation_time", or_nan(r.initiation_time), "s");  // null: no breach
   s.set("headcut_formation_time", or_nan(r.headcut_formation_time), "s");
@@ -113,6 +119,11 @@ int run_breach(const mpi::Comm& comm, const config::Config& cfg, const RunOption
            result.initiation_time ? fmt::format("breach initiated at {:.3f} h", *result.initiation_time / 3600.0)
                                   : std::string("no breach"),
            result.final_depth, result.final_bottom_width);
+  if (result.rising_at_end)
+    log.warn(
+        "the outflow is still rising at the end of the run ({:.3f} h): the event has not finished and its "
+        "peak is not known; extend time.end",
+        scene.time.end / 3600.0);
   log.info("{} steps ({} rejected), {} evaluations; mass balance error {:.3g} m^3 of {:.4g} m^3 inflow", result.steps,
            result.rejected_steps, result.evaluations, result.mass_balance_error, result.inflow_volume);
   make_summary(result).write(out / "summary.json");
