@@ -224,9 +224,18 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
     if (std::system(cmd.c_str()) != 0) log.warn("the charts failed (command: {}); the tables are complete", cmd);
   }
   counts.run = finished;
+  const LedgerEntry* first_failure = nullptr;
   for (const auto& [id, e] : all)
-    if (!e.ok) ++counts.failed;
+    if (!e.ok) {
+      ++counts.failed;
+      if (!first_failure) first_failure = &e;
+    }
   log.info("study done: {} evaluations, {} failed; {}", all.size(), counts.failed, (out / "tabular.dat").string());
+  // A study none of whose evaluations ran has no result to analyse: most often one mistake (a
+  // misspelt key in `set`, a unit, a template value) that every evaluation repeats.
+  if (!all.empty() && counts.failed == all.size())
+    throw InputError(fmt::format("every one of the {} evaluations failed; the first (evaluation {}): {}", all.size(),
+                                 first_failure->eval_id, first_failure->reason));
   return counts;
 }
 

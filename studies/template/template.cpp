@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 
 #include "core/errors.hpp"
 
@@ -11,6 +13,13 @@ namespace suite::studies {
 namespace {
 
 // "file:line:column" for messages.
+// "kd = 3, su = 5": the variables an evaluation rendered with.
+std::string describe(const std::map<std::string, double>& values) {
+  std::string text;
+  for (const auto& [name, v] : values) text += (text.empty() ? "" : ", ") + name + " = " + format_number(v);
+  return text;
+}
+
 std::string place(const std::string& source, std::size_t line, std::size_t column) {
   return fmt::format("{}:{}:{}", source, line, column);
 }
@@ -82,12 +91,23 @@ std::string Template::render(const std::map<std::string, double>& values) const 
       out += piece.literal;
       continue;
     }
+    double value = 0;
     try {
-      out += format_number(piece.tag->evaluate(values));
+      value = piece.tag->evaluate(values);
     } catch (const ExpressionError& e) {
       throw InputError(fmt::format("{}: in {{{}}}: {}", place(source_name_, piece.line, piece.column + e.position()),
                                    piece.tag->text(), e.problem()));
     }
+    // Where Python raises (a division by zero, a negative number to a fractional power, an
+    // overflow) the expression gives inf or nan: never a value for an input file.
+    if (!std::isfinite(value))
+      throw InputError(
+          fmt::format("{}: {{{}}} gives {} at {}: Python raises here (a division by zero, a negative "
+                      "number to a fractional power or an overflow); a template value must be a finite "
+                      "number",
+                      place(source_name_, piece.line, piece.column), piece.tag->text(),
+                      std::isnan(value) ? std::string("nan") : format_number(value), describe(values)));
+    out += format_number(value);
   }
   return out;
 }

@@ -38,8 +38,7 @@ std::string spec(double kd_lower = 10.0, int concurrency = 2) {
          ", upper: 50}\n"
          "  - {name: su, lower: 5, upper: 30}\n"
          "method: {type: multidim, partitions: 2}\n" +
-         kModel + "execution: {concurrency: " +
-         std::to_string(concurrency) + "}\noutput: {plot: false}\n";
+         kModel + "execution: {concurrency: " + std::to_string(concurrency) + "}\noutput: {plot: false}\n";
 }
 
 StudyCounts run(const fs::path& dir, const std::string& text, bool resume = false, bool retry = false) {
@@ -89,18 +88,21 @@ void kill_and_resume(const std::string& text, std::size_t points) {
   EXPECT_EQ(read_file(dir / "killed" / "tabular.dat"), read_file(dir / "whole" / "tabular.dat"));
 }
 
-TEST(StudyRun, KilledAndResumedGivesTheSameTable) { kill_and_resume(spec(), 9); }
+TEST(StudyRun, KilledAndResumedGivesTheSameTable) {
+  kill_and_resume(spec(), 9);
+}
 
 // The same for a Latin hypercube over unbounded distributions: the resume reads the effective
 // study.yaml, which must give the very same points (the design's quantile box is not written
 // back as bounds, which would truncate the distributions and move every point by ~1e-7).
 TEST(StudyRun, KilledAndResumedLhsOverDistributionsGivesTheSameTable) {
-  kill_and_resume("variables:\n"
-                  "  - {name: kd, distribution: {type: lognormal, mean: 30, std: 10}}\n"
-                  "  - {name: su, distribution: {type: uniform, lower: 5, upper: 30}}\n"
-                  "method: {type: sampling, sample_type: lhs, samples: 12, seed: 7}\n" +
-                      kModel + "output: {plot: false}\n",
-                  12);
+  kill_and_resume(
+      "variables:\n"
+      "  - {name: kd, distribution: {type: lognormal, mean: 30, std: 10}}\n"
+      "  - {name: su, distribution: {type: uniform, lower: 5, upper: 30}}\n"
+      "method: {type: sampling, sample_type: lhs, samples: 12, seed: 7}\n" +
+          kModel + "output: {plot: false}\n",
+      12);
 }
 
 TEST(StudyRun, FailedEvaluationsAreRecordedAndRetried) {
@@ -116,6 +118,21 @@ TEST(StudyRun, FailedEvaluationsAreRecordedAndRetried) {
   // Resuming reruns nothing; --retry-failed reruns exactly the failed three (which fail again).
   EXPECT_EQ(run(dir / "f", "", true).run, 0u);
   EXPECT_EQ(run(dir / "f", "", true, true).run, 3u);
+}
+
+// A study none of whose evaluations runs stops with an error quoting the first failure (it exited
+// 0 before): here a misspelt key in the model's `set`, which every evaluation repeats. The tables
+// are written first.
+TEST(StudyRun, AStudyWhoseEvaluationsAllFailIsAnError) {
+  const auto dir = suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF));
+  std::string text = spec();
+  const auto at = text.find("soil.erodibility");
+  text.replace(at, std::string("soil.erodibility").size(), "soil.erodability");
+  const auto what = suite::testing::input_error_of([&] { run(dir / "misspelt", text); });
+  EXPECT_NE(what.find("every one of the 9 evaluations failed; the first (evaluation 1): "), std::string::npos) << what;
+  EXPECT_NE(what.find("erodability"), std::string::npos) << what;
+  EXPECT_TRUE(fs::exists(dir / "misspelt" / "tabular.csv"));
+  EXPECT_NO_THROW(run(dir / "partly", spec(-10.0))) << "some evaluations failing is a result";
 }
 
 TEST(StudyRun, RelativePathsSurviveAResumeFromElsewhere) {

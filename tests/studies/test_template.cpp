@@ -189,4 +189,17 @@ TEST(Template, MistakesNameTheLineAndColumn) {
                   "windam.in:6:4: in {Kdx}: unknown variable 'Kdx' (did you mean 'Kd'?); valid names: Kd, Scale, Us");
 }
 
+// Where Python raises, the template does too, naming the place and the values: the expression
+// gives inf or nan, which no input file can take.
+TEST(Template, ValuesWherePythonRaisesAreRefused) {
+  const auto t = Template::parse("kd = {Kd/0}\nroot = {(-8)**(1/3)}\n", "dam.tmpl");
+  EXPECT_CONTAINS(input_error_of([&] {
+                    t.render({{"Kd", 3}});
+                  }),
+                  "dam.tmpl:1:7: {Kd/0} gives inf at Kd = 3: Python raises here");
+  const auto root = Template::parse("root = {(x)**(1/3)}\n", "dam.tmpl");
+  EXPECT_EQ(root.render({{"x", 8}}), "root = 2\n");
+  EXPECT_CONTAINS(input_error_of([&] { root.render({{"x", -8}}); }), "{(x)**(1/3)} gives nan at x = -8");
+}
+
 }  // namespace
