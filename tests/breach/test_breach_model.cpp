@@ -122,12 +122,14 @@ TEST(BreachModel, OutflowIntegratesToTheStorageChange) {
 }
 
 TEST(BreachModel, AnEmptyReservoirReleasesNothing) {
-  // Reservoirs whose bottom lies above the breach invert or the spillway crest: the outflow can
-  // never exceed what was stored plus what came in, and the storage never goes below zero.
+  // Reservoirs that the breach drains to their bottom (at the foundation, which the breach
+  // reaches), as a power law, a table, and with a spillway crest below the bottom: without inflow
+  // the outflow never exceeds what was stored, and the storage never goes below zero. (A bottom
+  // above the foundation is refused: BadInputIsRejectedWithTheKeyAndTheFix.)
   const std::vector<std::vector<std::string>> cases = {
-      {"reservoir.storage.bottom=2 m"},
-      {"reservoir.storage={type: table, table: [[6 m, 1e6 m^3], [12 m, 5e6 m^3], [14 m, 7e6 m^3]]}"},
-      {"reservoir.storage.bottom=2 m", "reservoir.spillway={table: [[-1 m, 0 m^3/s], [13 m, 300 m^3/s]]}"}};
+      {"reservoir.storage.bottom=0 m"},
+      {"reservoir.storage={type: table, table: [[0 m, 0 m^3], [6 m, 1e6 m^3], [12 m, 5e6 m^3], [14 m, 7e6 m^3]]}"},
+      {"reservoir.storage.bottom=-2 m", "reservoir.spillway={table: [[-3 m, 0 m^3/s], [13 m, 300 m^3/s]]}"}};
   for (auto o : cases) {
     o.insert(o.end(), {"reservoir.initial_level=12.5 m", "inflow={type: constant, discharge: 0}"});
     const Scene s = scene(o);
@@ -334,6 +336,12 @@ TEST(BreachModel, BadInputIsRejectedWithTheKeyAndTheFix) {
   has(error({"headcut.formation_depth=15 m"}), "less than the dam height");
   has(error({"time.end=0 h"}), "must be after time.start");
   has(error({"reservoir.initial_level=-2 m"}), "below the bottom of the storage relation");
+  // A reservoir bottom above the foundation the breach erodes to (it ran 31 million steps to a
+  // peak of 15,947 m^3/s from negative storage, or released more water than it held).
+  has(error({"reservoir.storage.bottom=15 m", "reservoir.initial_level=16 m"}),
+      "has its bottom (zero storage) at 15 m, above the dam's foundation (0 m)");
+  has(error({"reservoir.storage.bottom=0.5 m"}), "key 'reservoir.storage'");
+  EXPECT_NO_THROW(scene({"reservoir.storage.bottom=-1 m"})) << "a bottom below the foundation is a deeper reservoir";
   has(error({"soil.d75=0.2 mm", "soil.grain_roughness=0.02"}), "either d75 or grain_roughness");
   has(error({"reservoir.spillway={table: [[10 m, 5 m^3/s], [11 m, 40 m^3/s]]}"}), "must have discharge 0");
 }

@@ -86,6 +86,14 @@ std::optional<Scene::Problem> Scene::cross_section_problem() const {
     return Problem{"breach", "initial_width", fmt::format("is wider than the crest ({} m)", dam.crest_length)};
   if (breach.formation_depth >= dam.height)
     return Problem{"headcut", "formation_depth", "must be less than the dam height"};
+  // The breach can erode down to the foundation; a storage relation that ends above it would
+  // give the reservoir negative storage there (and the model water that never was).
+  if (reservoir.storage.bottom() > dam.foundation)
+    return Problem{"reservoir", "storage",
+                   fmt::format("has its bottom (zero storage) at {} m, above the dam's foundation ({} m), down to "
+                               "which the breach can erode; give the storage relation's bottom at or below the "
+                               "foundation, in the dam's datum",
+                               reservoir.storage.bottom(), dam.foundation)};
   if (reservoir.initial_level < reservoir.storage.bottom())
     return Problem{"reservoir", "initial_level",
                    fmt::format("is below the bottom of the storage relation ({} m)", reservoir.storage.bottom())};
