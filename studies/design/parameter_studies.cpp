@@ -139,8 +139,13 @@ Design read_design(const config::Section& s, const std::vector<Variable>& vars) 
           saltelli_design(marginals, static_cast<std::size_t>(s.integer("samples", 1000, 2, 10000000)), d.seed);
       d.points = d.saltelli->points;
     } else {
+      const auto levels = s.integer("levels", 4, 2, 1000);
+      if (levels % 2 != 0)
+        s.reject("levels",
+                 "must be even (Morris's step is half the levels, so that every level is reached with "
+                 "equal probability): give 4 (the default), 6, 8, ...");
       d.morris = morris_design(d.lower, d.upper, static_cast<std::size_t>(s.integer("trajectories", 10, 1, 100000)),
-                               static_cast<std::size_t>(s.integer("levels", 4, 2, 1000)), d.seed);
+                               static_cast<std::size_t>(levels), d.seed);
       d.points = d.morris->points;
     }
     return d;

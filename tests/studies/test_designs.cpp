@@ -132,6 +132,9 @@ TEST(Designs, BadSpecificationsNameTheKey) {
       "must be an identifier");
   has(input_error_of([&] { design(kTwo + "method: {type: vector, num_steps: 3}\n"); }),
       "either final_point or step_vector");
+  // Morris's levels: the file and line, not only the method's name.
+  has(input_error_of([&] { design(kTwo + "method: {type: morris, levels: 3}\n"); }),
+      "key 'method.levels' = '3': must be even");
 }
 
 }  // namespace
