@@ -131,6 +131,17 @@ FoamScene FoamScene::read(const config::Section& root) {
     root.section("coupling").reject("interval", fmt::format("{} s is longer than time.end ({} s): no erosion step "
                                                             "would run",
                                                             sc.coupling.interval, sc.time.end));
+  if (sc.soil.kd > 0) {
+    // Every interval ends on one of OpenFOAM's write times, where the wall shear stress is read:
+    // a shorter last interval would end between them.
+    const double n = sc.time.end / sc.coupling.interval;
+    if (std::abs(n - std::round(n)) > 1e-9 * n)
+      root.section("coupling").reject(
+          "interval", fmt::format("{} s does not divide time.end ({} s) into whole intervals; give {:.6g} s or {:.6g} "
+                                  "s",
+                                  sc.coupling.interval, sc.time.end, sc.time.end / std::ceil(n),
+                                  sc.time.end / std::max(1.0, std::floor(n))));
+  }
 
   const auto run = root.section_or_empty("run");
   sc.run.ranks = static_cast<int>(run.integer("ranks", 1, 1, 4096));
