@@ -13,9 +13,36 @@ namespace suite::carving {
 
 namespace {
 
-// Seed-pixel counts of every column, and the box of the seed pixels.
+// The two tips of a silhouette along one image axis, in pixel-centre coordinates, from its seed
+// pixels per line across that axis (`counts`, first and last the outermost lines with seed).
+// The tip lies between the last line with seed and the next one. Near a rounded tip the chord
+// length h grows as the square root of the distance from the tip (locally an ellipse: h^2 is
+// linear in x), so the line through (x, h^2) of the last two lines meets zero at the tip: at any
+// sub-pixel position of the seed, where counting lines assumes the tip half a pixel beyond the last
+// one (one pixel too long for a seed whose tips fall on pixel centres). Where the end is not
+// rounded (h not falling towards it) the half pixel stays.
+struct Ends {
+  double lo = 0, hi = 0;
+};
+
+double tip(const std::vector<long long>& counts, int last, int inward) {
+  const int before = last + inward;
+  const double edge = last - 0.5 * inward;  // half a pixel beyond the last line
+  if (before < 0 || before >= static_cast<int>(counts.size())) return edge;
+  const double h1 = static_cast<double>(counts[static_cast<std::size_t>(last)]);
+  const double h2 = static_cast<double>(counts[static_cast<std::size_t>(before)]);
+  if (!(h2 > h1)) return edge;
+  const double beyond = h1 * h1 / (h2 * h2 - h1 * h1);  // lines past `last` where h^2 reaches 0
+  return last - inward * std::min(beyond, 1.0);
+}
+
+Ends ends(const std::vector<long long>& counts, int first, int last) {
+  return {tip(counts, first, +1), tip(counts, last, -1)};
+}
+
+// Seed-pixel counts of every column and row, and the box of the seed pixels.
 struct Profile {
-  std::vector<long long> columns;
+  std::vector<long long> columns, rows;
   PixelBox box;
 
   // Column count at a continuous column position, linear between column centres, 0 outside the image.
@@ -44,8 +71,11 @@ Profile profile(const Mask& mask, const char* which) {
     p.columns[static_cast<std::size_t>(x)] = mask.count(x, 0, x, mask.height() - 1);
     if (p.columns[static_cast<std::size_t>(x)] > 0) p.box.x0 = std::min(p.box.x0, x), p.box.x1 = x;
   }
-  for (int y = 0; y < mask.height(); ++y)
-    if (mask.count(0, y, mask.width() - 1, y) > 0) p.box.y0 = std::min(p.box.y0, y), p.box.y1 = y;
+  p.rows.resize(static_cast<std::size_t>(mask.height()));
+  for (int y = 0; y < mask.height(); ++y) {
+    p.rows[static_cast<std::size_t>(y)] = mask.count(0, y, mask.width() - 1, y);
+    if (p.rows[static_cast<std::size_t>(y)] > 0) p.box.y0 = std::min(p.box.y0, y), p.box.y1 = y;
+  }
   return p;
 }
 
@@ -65,16 +95,18 @@ TwoViewResult measure_two_view(const Mask& top, const Mask& side, const SlicingO
   TwoViewResult r;
   r.top_box = t.box;
   r.side_box = s.box;
-  const double length_top_px = t.box.width(), length_side_px = s.box.width();
+  const Ends top_x = ends(t.columns, t.box.x0, t.box.x1), side_x = ends(s.columns, s.box.x0, s.box.x1);
+  const Ends top_y = ends(t.rows, t.box.y0, t.box.y1), side_y = ends(s.rows, s.box.y0, s.box.y1);
+  const double length_top_px = top_x.hi - top_x.lo, length_side_px = side_x.hi - side_x.lo;
   r.scale = options.scale_correction ? length_top_px / length_side_px : 1.0;
   r.px_per_mm_side = options.px_per_mm_top / r.scale;
   r.length_mm = length_top_px / options.px_per_mm_top;
-  r.width_mm = t.box.height() / options.px_per_mm_top;
-  r.thickness_mm = s.box.height() / r.px_per_mm_side;
+  r.width_mm = (top_y.hi - top_y.lo) / options.px_per_mm_top;
+  r.thickness_mm = (side_y.hi - side_y.lo) / r.px_per_mm_side;
 
   const int n = options.slices;
   const double step_px = length_top_px / n, h_mm = r.length_mm / n;
-  const double start_top = t.box.x0 - 0.5, start_side = s.box.x0 - 0.5;
+  const double start_top = top_x.lo, start_side = side_x.lo;
   r.slices.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     Slice& slice = r.slices[static_cast<std::size_t>(i)];
