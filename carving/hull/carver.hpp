@@ -13,6 +13,7 @@
 //
 // With subvoxel_samples = s > 0, cells are tested by their full extent, and each voxel the
 // silhouette boundary passes through is sampled at s^3 interior points: the sub-voxel volume.
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -58,6 +59,19 @@ struct CarveResult {
   std::vector<BoundaryVoxel> boundary;
   CarveStats stats;
 };
+
+// Calls f(i, j, k) once for every voxel whose centre a carve made with keep_cells kept: each voxel
+// of the inside blocks (clipped to the grid), then the boundary voxels with their centre kept.
+template <class F>
+void for_each_kept_voxel(const CarveResult& r, F&& f) {
+  const auto& n = r.grid.n;
+  for (const Block& b : r.inside)
+    for (int k = b.k; k < std::min(b.k + b.size, n[2]); ++k)
+      for (int j = b.j; j < std::min(b.j + b.size, n[1]); ++j)
+        for (int i = b.i; i < std::min(b.i + b.size, n[0]); ++i) f(i, j, k);
+  for (const BoundaryVoxel& v : r.boundary)
+    if (v.centre_kept) f(v.i, v.j, v.k);
+}
 
 // views[v] and masks[v] belong together; each mask has its view's size. Throws InputError when
 // the sizes disagree or the grid reaches behind a camera.

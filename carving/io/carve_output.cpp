@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <span>
 #include <string>
 
@@ -18,12 +17,7 @@ std::vector<std::uint8_t> occupancy_bytes(const CarveResult& r, const std::vecto
   const auto at = [&](int i, int j, int k) {
     return static_cast<std::size_t>(j) + static_cast<std::size_t>(n[1]) * (i + static_cast<std::size_t>(n[0]) * k);
   };
-  for (const Block& b : r.inside)
-    for (int k = b.k; k < std::min(b.k + b.size, n[2]); ++k)
-      for (int i = b.i; i < std::min(b.i + b.size, n[0]); ++i)
-        for (int j = b.j; j < std::min(b.j + b.size, n[1]); ++j) bytes[at(i, j, k)] = 1;
-  for (const BoundaryVoxel& v : r.boundary)
-    if (v.centre_kept) bytes[at(v.i, v.j, v.k)] = 1;
+  for_each_kept_voxel(r, [&](int i, int j, int k) { bytes[at(i, j, k)] = 1; });
   if (!initial.empty())
     for (std::size_t m = 0; m < bytes.size(); ++m) bytes[m] = bytes[m] && initial[m];
   return bytes;

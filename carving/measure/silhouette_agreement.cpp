@@ -15,12 +15,7 @@ std::vector<double> silhouette_coverage(const std::vector<View>& views, const st
   const auto nx = static_cast<std::size_t>(g.n[0]), ny = static_cast<std::size_t>(g.n[1]);
   std::vector<std::uint8_t> kept(nx * ny * static_cast<std::size_t>(g.n[2]), 0);
   const auto at = [&](int i, int j, int k) { return static_cast<std::size_t>(i) + nx * (j + ny * k); };
-  for (const Block& b : hull.inside)
-    for (int k = b.k; k < std::min(b.k + b.size, g.n[2]); ++k)
-      for (int j = b.j; j < std::min(b.j + b.size, g.n[1]); ++j)
-        for (int i = b.i; i < std::min(b.i + b.size, g.n[0]); ++i) kept[at(i, j, k)] = 1;
-  for (const BoundaryVoxel& v : hull.boundary)
-    if (v.centre_kept) kept[at(v.i, v.j, v.k)] = 1;
+  for_each_kept_voxel(hull, [&](int i, int j, int k) { kept[at(i, j, k)] = 1; });
   const auto empty = [&](int i, int j, int k) {
     return i < 0 || j < 0 || k < 0 || i >= g.n[0] || j >= g.n[1] || k >= g.n[2] || !kept[at(i, j, k)];
   };

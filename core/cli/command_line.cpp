@@ -7,11 +7,32 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <tuple>
 
 #include "core/cli/subcommands.hpp"
 #include "core/config/config.hpp"
 
 namespace suite::cli {
+namespace {
+
+// Runs CLI11 on the command line. On --help (exit 0, the help of the command asked about) or a
+// usage error (exit 2, one line that points to that command's --help) returns the exit status
+// and the message for rank 0; nothing when the program should go on.
+std::optional<std::pair<int, std::string>> stop_after_parse(CLI::App& app, const std::string& program, int argc,
+                                                            const char* const* argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    return std::make_pair(0, app.help());
+  } catch (const CLI::ParseError& e) {
+    const auto chosen = app.get_subcommands();
+    return std::make_pair(2, fmt::format("{}: {}; run '{}{} --help' for usage", program, e.what(), program,
+                                         chosen.empty() ? "" : " " + chosen.front()->get_name()));
+  }
+  return std::nullopt;
+}
+
+}  // namespace
 
 Parsed parse(const Spec& spec, int argc, const char* const* argv) {
   CLI::App app(spec.description, spec.program);
@@ -41,14 +62,8 @@ Parsed parse(const Spec& spec, int argc, const char* const* argv) {
       "variable.");
 
   Parsed result;
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    result.message = app.help();
-    return result;
-  } catch (const CLI::ParseError& e) {
-    result.exit_code = 2;
-    result.message = fmt::format("{}: {}; run '{} --help' for usage", spec.program, e.what(), spec.program);
+  if (auto stop = stop_after_parse(app, spec.program, argc, argv)) {
+    std::tie(result.exit_code, result.message) = std::move(*stop);
     return result;
   }
   for (const auto& arg : positional) {
@@ -191,14 +206,9 @@ ParsedCommand parse_command(const ProgramSpec& spec, int argc, const char* const
                                  command.empty() ? "" : " " + command);
     return result;
   };
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    result.message = app.help();
+  if (auto stop = stop_after_parse(app, spec.program, argc, argv)) {
+    std::tie(result.exit_code, result.message) = std::move(*stop);
     return result;
-  } catch (const CLI::ParseError& e) {
-    const auto chosen = app.get_subcommands();
-    return usage_error(e.what(), chosen.empty() ? "" : chosen.front()->get_name());
   }
 
   CommandArguments a;
