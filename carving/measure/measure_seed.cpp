@@ -25,10 +25,9 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// The least part of a view's silhouette the hull's image may leave uncovered before the views
-// count as disagreeing with the calibration (measure/silhouette_agreement.hpp). Measured: rendered
-// seeds 0.9996 and more, the real Kansas State grain's 36 photographs 0.987 in its worst view; with
-// one of its views left out 0.907 (docs/carving.md, "Quality checks").
+// The part of every view's silhouette the hull's image must cover; below it the views
+// count as disagreeing with the calibration (measure/silhouette_agreement.hpp); the coverage that
+// consistent and inconsistent view sets reach is measured in docs/carving.md, "Quality checks".
 constexpr double kMinCoverage = 0.95;
 
 struct SegmentedView {

@@ -15,16 +15,16 @@
 //   s = X_top / X_side (the length both cameras see); the side view's pixel size is then
 //   px_per_mm_top / s.
 // - The top view's length is cut into N equal slices of h = length / N. Slice i's centre lies at
-//   c_i = t0 + (i + 1/2) X_top / N (columns have their centres at integers, t0 the first tip). A_i is half the top view's seed-pixel count of column c_i and B_i half the side
-//   view's count at the corresponding position t0_side + (c_i - t0) / s, both linearly
-//   interpolated between the two nearest columns (columns outside the seed count 0), so the width
-//   is taken at the slice centre, not maximised over the slice (that biases the volume up ~3%).
-//   v_i = pi A_i B_i h, V = sum v_i: the midpoint rule for the integral of the ellipse areas, whose
-//   error falls as 1/N^2 for a smooth profile (for an ellipsoid it is exactly +1/(2 N^2) of V).
+//   c_i = t0 + (i + 1/2) X_top / N (columns have their centres at integers, t0 the first tip). A_i is half the top
+//   view's seed-pixel count of column c_i and B_i half the side view's count at the corresponding position t0_side +
+//   (c_i - t0) / s, both linearly interpolated between the two nearest columns (columns outside the seed count 0), so
+//   the width is taken at the slice centre, not maximised over the slice (that biases the volume up ~3%). v_i = pi A_i
+//   B_i h, V = sum v_i: the midpoint rule for the integral of the ellipse areas, whose error falls as 1/N^2 for a
+//   smooth profile (for an ellipsoid it is exactly +1/(2 N^2) of V).
 // - Reported width and thickness are the extents of the masks across (tip to tip along the rows,
 //   as the length; the side view's rescaled by s), like caliper readings, not the maxima of 2 A_i,
-//   2 B_i. Volume: the midpoint rule's +1/(2 N^2) falls below the chords' pixel quantisation
-//   (+-0.25% on a wheat grain at 40 px/mm) from N of about 20 on; more slices buy nothing then.
+//   2 B_i. Volume: the midpoint rule's +1/(2 N^2) soon falls below the chords' pixel quantisation,
+//   and more slices buy nothing from there (docs/methods/carving.md, step 3, has the numbers).
 // - Without scale correction s = 1: the side view is taken to have the top view's pixel size.
 #include <vector>
 
