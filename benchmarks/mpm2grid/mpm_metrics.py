@@ -10,12 +10,18 @@ particles_first / particles_last / particles_mean (water + soil over series.csv;
 each series interval by its steps, dt from the row), s_per_step, ns_per_particle_step
 (step_s / (steps x particles_mean), wall time on the slowest rank; multiply by ranks for
 core-ns), the decomposition block (halo and migration bytes per step summed over ranks,
-migrated particles per step, rebalances; empty on 1 rank and on stopped runs, which write no
+migrated particles per step, rebalances, and at the end of the list halo and migration messages
+per step summed over ranks; empty on 1 rank and on stopped runs, which write no
 decomposition block), drag_ksp_max_iterations (consistent drag only, completed runs only),
 summary.json values (outflow water volume, eroded soil volume, water front, end time; empty
 unless completed), peak RSS of each rank (kB, max and sum over ranks) when RSS_DIR is given, the
 largest kinetic energy in series.csv, dt_first / dt_last / dt_largest: the dt column of series.csv
 (the step before each sample; a step cut to land on a sample time is shorter, never longer).
+Then per phase of the step (run.json "step/<phase>", solvers/mpm2grid/model/step_timers.hpp) and
+the two per-step checks outside it ("dt limit", "blow-up check"): ph_<phase>_mean and ph_<phase>_max,
+its seconds over the run, mean and largest over the ranks, and ph_<phase>_wait, the mean over the
+ranks of the part blocked in MPI calls (phase names with '_' for spaces and '-'; empty where the
+run did not report the phase, e.g. the halo's on one rank or runs before the breakdown existed).
 A folder without run.json (a run that failed, e.g. the energy blow-up) gives status failed.
 """
 import csv
@@ -27,7 +33,19 @@ COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "parti
            "particles_mean", "s_per_step", "ns_per_particle_step", "halo_bytes_per_step",
            "migration_bytes_per_step", "migrated_particles_per_step", "rebalances", "particles_per_rank",
            "drag_ksp_max_iterations", "outflow_water_volume", "eroded_soil_volume", "water_front", "end_time",
-           "dt_first", "dt_last", "rss_max_kb", "rss_sum_kb", "kinetic_energy_max", "dt_largest"]
+           "dt_first", "dt_last", "rss_max_kb", "rss_sum_kb", "kinetic_energy_max", "dt_largest",
+           "halo_messages_per_step", "migration_messages_per_step"]
+STEP_PHASES = ["balance", "grid", "halo plan", "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
+               "boundary", "halo copy", "g2p water", "g2p soil", "outflow", "inlet", "migrate"]
+CHECKS = ["dt limit", "blow-up check"]
+
+
+def slug(phase):
+    return phase.replace(" ", "_").replace("-", "_")
+
+
+for _p in STEP_PHASES + CHECKS:
+    COLUMNS += [f"ph_{slug(_p)}_mean", f"ph_{slug(_p)}_max", f"ph_{slug(_p)}_wait"]
 
 
 def series(run):
@@ -83,12 +101,21 @@ def metrics(run, rss_dir=None):
             if rows:
                 m["ns_per_particle_step"] = f"{1e9 * step['max_s'] / (steps * particles_mean(rows)):.5g}"
         d = r.get("decomposition", {})
-        for k in ("halo_bytes_per_step", "migration_bytes_per_step", "migrated_particles_per_step", "rebalances"):
+        for k in ("halo_bytes_per_step", "migration_bytes_per_step", "migrated_particles_per_step", "rebalances",
+                  "halo_messages_per_step", "migration_messages_per_step"):
             if k in d:
                 m[k] = f"{d[k]:.6g}"
         if "particles_per_rank" in d:
             m["particles_per_rank"] = " ".join(str(p) for p in d["particles_per_rank"])
         m["drag_ksp_max_iterations"] = r.get("drag_ksp_max_iterations", "")
+        phases = r.get("phases", {})
+        for p in STEP_PHASES + CHECKS:
+            v = phases.get(p if p in CHECKS else f"step/{p}")
+            if v:
+                w = phases.get(f"step/{p}/wait", {})
+                m[f"ph_{slug(p)}_mean"] = f"{v['mean_s']:.6g}"
+                m[f"ph_{slug(p)}_max"] = f"{v['max_s']:.6g}"
+                m[f"ph_{slug(p)}_wait"] = f"{w.get('mean_s', 0):.6g}"
     sj = run / "summary.json"
     if sj.exists() and m["status"] == "completed":
         s = json.loads(sj.read_text())

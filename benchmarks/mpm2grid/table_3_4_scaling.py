@@ -35,6 +35,8 @@ import sys
 
 import matplotlib
 
+from mpm_metrics import CHECKS, STEP_PHASES, slug
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
@@ -100,6 +102,32 @@ if one:
     if 2 in speedup:
         print(f"- Strong scaling 1 -> 2 ranks: {speedup[2]:.2f}x, {50 * speedup[2]:.0f}% efficiency (goal >= 85%).")
 
+# Where the time goes: per phase of the step and the two per-step checks, ms per step (median over
+# repeats) as the mean over the ranks, the largest rank's, and the mean part blocked in MPI calls.
+breakdown = {}  # ranks -> [(phase, mean ms per step)]
+if any(rows[0].get(f"ph_{slug(p)}_mean") for p in STEP_PHASES):
+    print()
+    print("Where a step's time goes (run.json's step phases, solvers/mpm2grid/model/step_timers.hpp): ms per step, "
+          "mean over the ranks / largest rank / of the mean the part blocked in MPI calls (waiting for messages and "
+          "for other ranks in reductions); medians over repeats.")
+    print()
+    counts = sorted(by_ranks)
+    print("| phase | " + " | ".join(f"{p} rank{'s' if p > 1 else ''}: mean / max / wait" for p in counts) + " |")
+    print("| --- |" + " --- |" * len(counts))
+    for ph in STEP_PHASES + CHECKS:
+        cells, seen = [], False
+        for p in counts:
+            rs = [r for r in by_ranks[p] if r.get(f"ph_{slug(ph)}_mean")]
+            if not rs:
+                cells.append("-")
+                continue
+            seen = True
+            per = lambda f: 1e3 * statistics.median(float(r[f"ph_{slug(ph)}_{f}"]) / float(r["steps"]) for r in rs)
+            breakdown.setdefault(p, []).append((ph, per("mean")))
+            cells.append(f"{per('mean'):.2f} / {per('max'):.2f} / {per('wait'):.2f}")
+        if seen:
+            print(f"| {ph} | " + " | ".join(cells) + " |")
+
 # The projection.
 proj = []
 if 1 in T and 2 in T and by_ranks[2][0]["halo_bytes_per_step"]:
@@ -127,7 +155,7 @@ if 1 in T and 2 in T and by_ranks[2][0]["halo_bytes_per_step"]:
         proj.append((P, TP))
         print(f"| {P} | {HP / 1e6:.2f} MB | {TP:.4f} | {T[1] / TP:.1f}x | {100 * T[1] / TP / P:.0f}% |")
 
-fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+fig, axes = plt.subplots(1, 3 if breakdown else 2, figsize=(16 if breakdown else 11, 4.2))
 ax = axes[0]
 for p, rs in sorted(by_ranks.items()):
     ax.plot([p] * len(rs), [float(r["s_per_step"]) for r in rs], "o", color="tab:blue", alpha=0.5)
@@ -154,6 +182,21 @@ ax.set_xlabel("ranks")
 ax.set_ylabel("parallel efficiency (%)")
 ax.legend(fontsize=7)
 ax.grid(True, which="both", alpha=0.3)
+if breakdown:
+    ax = axes[2]
+    counts = sorted(breakdown)
+    names = [ph for ph in STEP_PHASES + CHECKS if any(ph == n for p in counts for n, _ in breakdown[p])]
+    cmap = plt.get_cmap("tab20")
+    bottom = [0.0] * len(counts)
+    for k, ph in enumerate(names):
+        # core-ms per step: mean per rank times the ranks, so perfect scaling keeps a bar's height
+        vals = [p * dict(breakdown[p]).get(ph, 0.0) for p in counts]
+        ax.bar([str(p) for p in counts], vals, bottom=bottom, color=cmap(k % 20), label=ph)
+        bottom = [b + v for b, v in zip(bottom, vals)]
+    ax.set_xlabel("ranks")
+    ax.set_ylabel("core-ms per step (mean per rank x ranks)")
+    ax.legend(fontsize=6, ncol=2)
+    ax.grid(True, axis="y", alpha=0.3)
 fig.suptitle(f"Table 3.4 example 2, grid.spacing {spacing}: strong scaling", fontsize=9)
 fig.tight_layout()
 fig.savefig(sys.argv[2], dpi=120)

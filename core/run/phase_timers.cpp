@@ -5,10 +5,12 @@
 
 namespace suite {
 
-void PhaseTimers::add(const std::string& phase, double seconds) {
+void PhaseTimers::add(const std::string& phase, double seconds) { add(phase, seconds, 1); }
+
+void PhaseTimers::add(const std::string& phase, double seconds, long long calls) {
   auto& t = totals_[phase];
   t.seconds += seconds;
-  t.calls += 1;
+  t.calls += calls;
 }
 
 double PhaseTimers::seconds(const std::string& phase) const {

@@ -19,6 +19,8 @@ struct PhaseTotal {
 class PhaseTimers {
  public:
   void add(const std::string& phase, double seconds);
+  // Adds a total measured elsewhere (`calls` calls that took `seconds` together).
+  void add(const std::string& phase, double seconds, long long calls);
   const std::map<std::string, PhaseTotal>& totals() const { return totals_; }
   double seconds(const std::string& phase) const;
 

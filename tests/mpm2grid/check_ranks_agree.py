@@ -63,3 +63,29 @@ assert dd["ranks"] == 2 and min(dd["particles_per_rank"]) > 0, f"not decomposed:
 assert dd["halo_bytes_per_step"] > 0, f"no halo traffic: {dd}"
 print(f"2 ranks: particles per rank {dd['particles_per_rank']}, halo {dd['halo_bytes_per_step']:.0f} bytes/step, "
       f"{dd['migrated_particles_per_step']:.2f} particles migrated/step, {dd['rebalances']} rebalances")
+
+# The step's breakdown in run.json (solvers/mpm2grid/model/step_timers.hpp) accounts for the step:
+# its phases are disjoint and cover Simulation::step() but for a few assignments, so per rank
+# their times add up to the "step" phase; the mean over the ranks is linear, so the phases' means
+# add up to the step's mean. 5% covers the untimed assignments and the clock reads themselves
+# (tens of nanoseconds against steps of at least 0.1 ms here). Every phase ran once a step; a
+# phase's time blocked in MPI is part of its time; 2 ranks wait in the halo sums.
+for d, ranks in ((one, 1), (two, 2)):
+    with open(os.path.join(d, "run.json")) as f:
+        phases = json.load(f)["phases"]
+    step = phases["step"]
+    parts = {k[5:]: v for k, v in phases.items() if k.startswith("step/") and not k.endswith("/wait")}
+    expected = {"grid", "stresses", "p2g water", "p2g soil", "grid solve", "boundary", "g2p water", "g2p soil"}
+    if ranks > 1:
+        expected |= {"halo plan", "halo sum", "halo copy", "migrate"}
+    assert expected <= set(parts), f"{d}/run.json: step phases {sorted(parts)} miss {sorted(expected - set(parts))}"
+    for name, v in parts.items():
+        assert v["calls"] == step["calls"], f"{d}/run.json: step/{name} counted {v['calls']} calls, the step {step['calls']}"
+        wait = phases.get(f"step/{name}/wait")
+        if wait:
+            assert wait["max_s"] <= v["max_s"] * (1 + 1e-9), f"{d}/run.json: step/{name} waited longer than it ran"
+    total = sum(v["mean_s"] for v in parts.values())
+    assert abs(total - step["mean_s"]) <= 0.05 * step["mean_s"], (
+        f"{d}/run.json: the step's phases add up to {total:.4f} s, the step took {step['mean_s']:.4f} s (> 5% apart)")
+    assert ranks == 1 or phases.get("step/halo sum/wait", {}).get("max_s", 0) > 0, f"{d}/run.json: no halo wait"
+    print(f"{ranks} rank(s): {len(parts)} step phases add up to {total:.4f} s of the step's {step['mean_s']:.4f} s")

@@ -26,7 +26,7 @@ void DomainDecomposition<Dim>::prepare(BlockGrid<Dim>& grid) {
     const auto key = BlockGrid<Dim>::key(grid.block_coord(b));
     if (owners_.owner(key) < 0) unowned.push_back(key);
   }
-  stats_.claimed_blocks += owners_.claim(comm_, unowned);
+  stats_.claimed_blocks += wait_.time([&] { return owners_.claim(comm_, unowned); });
   halo_.plan(comm_, grid, owners_);
 }
 
@@ -43,11 +43,14 @@ void DomainDecomposition<Dim>::sum_to_owners(NodeFields<Dim>& f) {
         for (int d = 0; d < Dim; ++d) f.momentum[i][d] += in[3 + d], f.force[i][d] += in[3 + Dim + d];
       });
   stats_.halo_bytes += halo_.take_bytes();
+  stats_.halo_messages += halo_.take_messages();
 }
 
 template <int Dim>
 void DomainDecomposition<Dim>::copy_to_ghosts(NodeFields<Dim>& soil, NodeFields<Dim>& water) {
-  halo_.forward(
+  // Only the ghost nodes this rank's particles reach (the ones its reverse sums sent): G2P reads
+  // the others, if at all, with weight zero.
+  halo_.forward_touched(
       comm_, 2 * Dim + 1,
       [&](long i, double* out) {
         for (int d = 0; d < Dim; ++d) out[d] = soil.velocity[i][d], out[Dim + d] = water.velocity[i][d];
@@ -58,6 +61,7 @@ void DomainDecomposition<Dim>::copy_to_ghosts(NodeFields<Dim>& soil, NodeFields<
         water.mass[i] = in[2 * Dim];
       });
   stats_.halo_bytes += halo_.take_bytes();
+  stats_.halo_messages += halo_.take_messages();
 }
 
 template <int Dim>
@@ -67,6 +71,7 @@ void DomainDecomposition<Dim>::copy_to_ghosts(std::vector<long>& per_slot) {
       comm_, 1, [&](long i, double* out) { out[0] = static_cast<double>(per_slot[static_cast<std::size_t>(i)]); },
       [&](long i, const double* in) { per_slot[static_cast<std::size_t>(i)] = static_cast<long>(in[0]); });
   stats_.halo_bytes += halo_.take_bytes();
+  stats_.halo_messages += halo_.take_messages();
 }
 
 template <int Dim>
@@ -75,6 +80,7 @@ void DomainDecomposition<Dim>::copy_to_ghosts(std::vector<double>& per_slot) {
       comm_, 1, [&](long i, double* out) { out[0] = per_slot[static_cast<std::size_t>(i)]; },
       [&](long i, const double* in) { per_slot[static_cast<std::size_t>(i)] = in[0]; });
   stats_.halo_bytes += halo_.take_bytes();
+  stats_.halo_messages += halo_.take_messages();
 }
 
 template <int Dim>
@@ -114,7 +120,7 @@ void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& so
   }
   std::sort(unowned.begin(), unowned.end());
   unowned.erase(std::unique(unowned.begin(), unowned.end()), unowned.end());
-  stats_.claimed_blocks += owners_.claim(comm_, unowned);
+  stats_.claimed_blocks += wait_.time([&] { return owners_.claim(comm_, unowned); });
   looked_up = false;  // the claims gave owners to blocks that had none
   if (!unowned.empty())
     for (std::size_t k = 0; k < 2; ++k) {
@@ -123,17 +129,19 @@ void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& so
       std::erase_if(leaving_[k], [&](const Leaving& l) { return l.to == me; });  // claimed here
     }
 
-  // One message per destination: the number of water particles, then the water's and the
+  // One message per destination that receives particles (none to the others: a rank sends to
+  // its neighbours, not to every rank): the number of water particles, then the water's and the
   // soil's packed states (each message's size reserved: growing it would hold up to three times
   // its particles at once).
   const auto ranks = static_cast<std::size_t>(comm_.size());
   constexpr auto kPacked = static_cast<std::size_t>(Particles<Dim>::kPacked);
-  std::vector<std::size_t> sizes(ranks, 1);
+  std::vector<std::size_t> sizes(ranks, 0);
   for (const auto& leaving : leaving_)
     for (const auto& l : leaving) sizes[static_cast<std::size_t>(l.to)] += kPacked;
   std::vector<std::vector<double>> send(ranks);
   for (std::size_t r = 0; r < ranks; ++r) {
-    send[r].reserve(sizes[r]);
+    if (sizes[r] == 0) continue;
+    send[r].reserve(1 + sizes[r]);
     send[r].push_back(0.0);
   }
   for (std::size_t k = 0; k < 2; ++k) {
@@ -147,13 +155,17 @@ void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& so
     species[k]->retain(staying(k));
   }
   for (std::size_t r = 0; r < ranks; ++r)
-    if (static_cast<int>(r) != me) stats_.migration_bytes += static_cast<long long>(send[r].size() * sizeof(double));
-  const auto received = all_to_all(comm_, send);
+    if (static_cast<int>(r) != me && !send[r].empty()) {
+      stats_.migration_bytes += static_cast<long long>(send[r].size() * sizeof(double));
+      ++stats_.migration_messages;
+    }
+  const auto received = all_to_all(comm_, send, &wait_);
   send = {};  // the particles that left, sent: freed before the arrivals are added
   std::array<std::size_t, 2> arriving{water.size(), soil.size()};
   for (const auto& from : received) {
-    const std::size_t water_count = from.empty() ? 0 : static_cast<std::size_t>(from[0]);
-    if (from.empty() || (from.size() - 1) % kPacked != 0 || water_count > (from.size() - 1) / kPacked)
+    if (from.empty()) continue;  // nothing from that rank
+    const auto water_count = static_cast<std::size_t>(from[0]);
+    if ((from.size() - 1) % kPacked != 0 || water_count > (from.size() - 1) / kPacked)
       throw LibraryError("particle migration: a rank sent a partial particle");
     arriving[0] += water_count;
     arriving[1] += (from.size() - 1) / kPacked - water_count;
@@ -161,7 +173,8 @@ void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& so
   water.reserve(arriving[0]);
   soil.reserve(arriving[1]);
   for (const auto& from : received) {
-    const std::size_t water_count = static_cast<std::size_t>(from[0]);
+    if (from.empty()) continue;
+    const auto water_count = static_cast<std::size_t>(from[0]);
     for (std::size_t k = 1, n = 0; k < from.size(); k += kPacked, ++n)
       (n < water_count ? water : soil).add_packed(from.data() + k);
   }
@@ -171,8 +184,8 @@ template <int Dim>
 bool DomainDecomposition<Dim>::balance(long long step, Particles<Dim>& water, Particles<Dim>& soil, bool force) {
   if (!force) {
     if (s_.check_every <= 0 || step % s_.check_every != 0) return false;
-    const auto soil_counts = comm_.all_gather(static_cast<long long>(soil.size()));
-    const auto water_counts = comm_.all_gather(static_cast<long long>(water.size()));
+    const auto soil_counts = wait_.time([&] { return comm_.all_gather(static_cast<long long>(soil.size())); });
+    const auto water_counts = wait_.time([&] { return comm_.all_gather(static_cast<long long>(water.size())); });
     double worst = 1;
     for (const auto* counts : {&soil_counts, &water_counts}) {
       long long total = 0, most = 0;

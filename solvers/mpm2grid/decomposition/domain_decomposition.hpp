@@ -23,6 +23,7 @@
 #include "core/mpi/comm.hpp"
 #include "solvers/mpm2grid/decomposition/block_owners.hpp"
 #include "solvers/mpm2grid/decomposition/halo_exchange.hpp"
+#include "solvers/mpm2grid/decomposition/wait_clock.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
 
@@ -37,7 +38,9 @@ struct DecompositionSettings {
 struct DecompositionStats {
   long long rebalances = 0;       // partitions after the first
   long long halo_bytes = 0;       // sent in reverse sums and forward copies
+  long long halo_messages = 0;    // point-to-point messages of those
   long long migration_bytes = 0;  // sent with migrating particles
+  long long migration_messages = 0;  // point-to-point messages of those (one per rank receiving some)
   long long migrated = 0;         // particles sent to other ranks
   long long claimed_blocks = 0;   // blocks first reached between partitions (counted on every rank)
   double imbalance = 1;           // at the last measurement
@@ -49,10 +52,16 @@ class DomainDecomposition {
   // `grid` is the caller's grid, whose spacing places particles in blocks; it must outlive the
   // decomposition.
   DomainDecomposition(const mpi::Comm& comm, const DecompositionSettings& settings, const BlockGrid<Dim>& grid)
-      : comm_(comm), s_(settings), grid_(&grid) {}
+      : comm_(comm), s_(settings), grid_(&grid), halo_(wait_) {}
+  DomainDecomposition(const DomainDecomposition&) = delete;  // the halo holds on to wait_
+  DomainDecomposition& operator=(const DomainDecomposition&) = delete;
 
   const mpi::Comm& comm() const { return comm_; }
   const DecompositionStats& stats() const { return stats_; }
+  // Seconds this rank has spent blocked in MPI calls (waiting for messages and collectives),
+  // cumulative: the decomposition's own, and those the simulation times through it (its
+  // reductions over the ranks).
+  WaitClock& waited() const { return wait_; }
 
   // COLLECTIVE. `grid` holds the blocks this rank's particles touch; blocks are claimed and
   // added (owned ones that other ranks' particles touch) as the halo needs.
@@ -63,7 +72,9 @@ class DomainDecomposition {
   // COLLECTIVE. Owners get the complete sums of one species' mass, momentum, force (before
   // gravity), drag and pressure sums.
   void sum_to_owners(NodeFields<Dim>& species);
-  // COLLECTIVE. Ghost nodes get their owners' velocities (both species) and water mass.
+  // COLLECTIVE. Ghost nodes get their owners' velocities (both species) and water mass: the
+  // nodes this rank's particles reached in this step's sum_to_owners() calls (the others keep
+  // their partial values; G2P reads them with weight zero).
   void copy_to_ghosts(NodeFields<Dim>& soil, NodeFields<Dim>& water);
   // COLLECTIVE. Ghost nodes get their owners' values of a per-slot integer (the drag solve's
   // node numbers).
@@ -105,6 +116,7 @@ class DomainDecomposition {
   DecompositionSettings s_;
   const BlockGrid<Dim>* grid_;  // the simulation's grid (for its spacing)
   BlockOwners owners_;
+  mutable WaitClock wait_;  // bookkeeping, also of the const reductions timed through waited()
   HaloExchange<Dim> halo_;
   DecompositionStats stats_;
   struct Leaving {

@@ -1,7 +1,8 @@
 #pragma once
 // Point-to-point traffic between the ranks of a decomposition, as two collectives over plain
 // arrays of trivially copyable values: all_to_all() (each rank sends its own list to every other
-// rank: counts by MPI_Alltoall, data point to point) and all_gather() (every rank's list on
+// rank: counts by MPI_Alltoall, data point to point; the time blocked in MPI counted in a
+// WaitClock when one is given) and all_gather() (every rank's list on
 // every rank: MPI_Allgatherv). Both return what arrived by source rank, so callers process it in
 // rank order and the result does not depend on message timing. Lists of one rank may be empty.
 #include <mpi.h>
@@ -16,6 +17,7 @@
 
 #include "core/errors.hpp"
 #include "core/mpi/comm.hpp"
+#include "solvers/mpm2grid/decomposition/wait_clock.hpp"
 
 namespace suite::mpm2grid {
 namespace detail {
@@ -52,7 +54,8 @@ std::vector<std::vector<T>> split(const std::vector<char>& bytes, const std::vec
 // contiguous copy on either side (a rank handing out half of all particles, as at the first
 // distribution, would hold its share three times over).
 template <class T>
-std::vector<std::vector<T>> all_to_all(const mpi::Comm& comm, const std::vector<std::vector<T>>& send) {
+std::vector<std::vector<T>> all_to_all(const mpi::Comm& comm, const std::vector<std::vector<T>>& send,
+                                       WaitClock* wait = nullptr) {
   static_assert(std::is_trivially_copyable_v<T>);
   constexpr int kTag = 7302;  // not the halo exchange's
   const auto ranks = static_cast<std::size_t>(comm.size());
@@ -64,7 +67,10 @@ std::vector<std::vector<T>> all_to_all(const mpi::Comm& comm, const std::vector<
     if (bytes > INT_MAX) throw LibraryError("all_to_all: more than 2 GiB for one rank; use more ranks");
     send_counts[r] = static_cast<int>(bytes);
   }
-  SUITE_MPI_CHECK(MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm.raw()));
+  WaitClock unused;
+  WaitClock& clock = wait ? *wait : unused;
+  clock.time(
+      [&] { SUITE_MPI_CHECK(MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm.raw())); });
   std::vector<std::vector<T>> in(ranks);
   std::vector<MPI_Request> requests;
   requests.reserve(2 * ranks);
@@ -83,7 +89,8 @@ std::vector<std::vector<T>> all_to_all(const mpi::Comm& comm, const std::vector<
         MPI_Isend(send[r].data(), send_counts[r], MPI_BYTE, static_cast<int>(r), kTag, comm.raw(), &requests.back()));
   }
   in[me] = send[me];
-  SUITE_MPI_CHECK(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE));
+  clock.time(
+      [&] { SUITE_MPI_CHECK(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE)); });
   return in;
 }
 

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -36,9 +37,11 @@ StepLimit Simulation<Dim>::stable_dt() const {
   double vmax2 = 0;  // the largest |v|^2: one square root, not one per particle (the same max)
   for (const auto* P : {&water_, &soil_})
     for (const auto& v : P->v) vmax2 = std::max(vmax2, v.squaredNorm());
-  const double vmax = max_over_ranks(std::sqrt(vmax2));
-  const bool water = sum_over_ranks(static_cast<double>(water_.size())) > 0;
-  const bool soil = sum_over_ranks(static_cast<double>(soil_.size())) > 0;
+  // One reduction: the fastest particle and whether each species has particles on some rank.
+  std::array<double, 3> most{std::sqrt(vmax2), water_.size() > 0 ? 1.0 : 0.0, soil_.size() > 0 ? 1.0 : 0.0};
+  max_over_ranks(most);
+  const double vmax = most[0];
+  const bool water = most[1] > 0, soil = most[2] > 0;
   const double h = grid_.spacing();
   StepLimit best{s_.dt_max, "dt_max"};
   auto consider = [&](double dt, const char* why) {
@@ -60,6 +63,7 @@ StepLimit Simulation<Dim>::stable_dt() const {
 
 template <int Dim>
 void Simulation<Dim>::build_grid() {
+  std::optional<StepPhaseScope> timed(std::in_place, times_, StepPhase::grid, wait_clock());
   grid_.clear();
   // Each species' particles are put back in group order where they drifted from it (the
   // transfers' speed; transfer/particle_order.hpp), the soil's known stresses with them.
@@ -72,7 +76,11 @@ void Simulation<Dim>::build_grid() {
     soil_.for_each_array([&](auto& values) { apply_order(values, order); });
     if (known_stress_.size() == soil_.size()) apply_order(known_stress_, order);
   }
-  if (dd_) dd_->prepare(grid_);  // adds the halo blocks after these
+  if (dd_) {
+    timed.emplace(times_, StepPhase::halo_plan, wait_clock());
+    dd_->prepare(grid_);  // adds the halo blocks after these
+    timed.emplace(times_, StepPhase::grid, wait_clock());
+  }
   water_nodes_.reset(grid_.nodes());
   soil_nodes_.reset(grid_.nodes());
 }
@@ -121,42 +129,79 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::spread(const Particles<Dim>& P, const 
 template <int Dim>
 void Simulation<Dim>::particles_to_grids(double dt) {
   const double fold_dt = s_.drag == DragScheme::explicit_euler ? 0.0 : dt;
-  spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt, .walls = &fold_, .gravity = s_.gravity},
-         water_nodes_);
-  if (dd_) dd_->sum_to_owners(water_nodes_);
+  {
+    auto timed = phase(StepPhase::p2g_water);
+    spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt, .walls = &fold_, .gravity = s_.gravity},
+           water_nodes_);
+  }
+  if (dd_) {
+    auto timed = phase(StepPhase::halo_sum);
+    dd_->sum_to_owners(water_nodes_);
+  }
   P2GSources<Dim> soil{
       .tau = &soil_tau_, .drag = &soil_drag_, .fold_dt = fold_dt, .walls = &fold_, .gravity = s_.gravity};
   if (s_.buoyancy) {
     auto& p = water_nodes_.pressure;
     for (std::size_t i = 0; i < grid_.nodes(); ++i) p[i] = water_nodes_.mass[i] > 0 ? p[i] / water_nodes_.mass[i] : 0.0;
-    if (dd_) dd_->copy_to_ghosts(p);
+    if (dd_) {
+      auto timed = phase(StepPhase::halo_sum);
+      dd_->copy_to_ghosts(p);
+    }
     soil.solid_volume = &solid_volume_;
     soil.node_pressure = &p;
   }
-  spread(soil_, soil, soil_nodes_);
-  if (s_.loads) add_loads();
-  if (dd_) dd_->sum_to_owners(soil_nodes_);
+  {
+    auto timed = phase(StepPhase::p2g_soil);
+    spread(soil_, soil, soil_nodes_);
+    if (s_.loads) add_loads();
+  }
+  if (dd_) {
+    auto timed = phase(StepPhase::halo_sum);
+    dd_->sum_to_owners(soil_nodes_);
+  }
 }
 
 template <int Dim>
 void Simulation<Dim>::step(double dt) {
-  if (dd_ && dd_->balance(steps_, water_, soil_)) keep_known_stresses();
+  if (dd_) {
+    auto timed = phase(StepPhase::balance);
+    if (dd_->balance(steps_, water_, soil_)) keep_known_stresses();
+  }
   build_grid();
-  stresses();
+  {
+    auto timed = phase(StepPhase::stresses);
+    stresses();
+  }
   particles_to_grids(dt);
-  if (s_.mixture) solid_fractions();
-  solve_grid(dt);
-  s_.walls.apply(grid_, water_nodes_);
-  s_.walls.apply(grid_, soil_nodes_);
+  {
+    auto timed = phase(StepPhase::grid_solve);
+    if (s_.mixture) solid_fractions();
+    solve_grid(dt);
+  }
   const double t_next = time_ + dt;
-  if (inlet_) inlet_->impose(grid_, water_nodes_, t_next);
-  if (dd_) dd_->copy_to_ghosts(soil_nodes_, water_nodes_);
+  {
+    auto timed = phase(StepPhase::boundary);
+    s_.walls.apply(grid_, water_nodes_);
+    s_.walls.apply(grid_, soil_nodes_);
+    if (inlet_) inlet_->impose(grid_, water_nodes_, t_next);
+  }
+  if (dd_) {
+    auto timed = phase(StepPhase::halo_copy);
+    dd_->copy_to_ghosts(soil_nodes_, water_nodes_);
+  }
   update_particles(dt);
-  remove_outflow();
+  {
+    auto timed = phase(StepPhase::outflow);
+    remove_outflow();
+  }
   // The inlet's state is the same on every rank; rank 0 adds its particles, migrate() sends them
   // to their owners.
-  if (inlet_) inlet_->emit(t_next, water_, !dd_ || dd_->comm().is_root());
+  if (inlet_) {
+    auto timed = phase(StepPhase::inlet);
+    inlet_->emit(t_next, water_, !dd_ || dd_->comm().is_root());
+  }
   if (dd_) {
+    auto timed = phase(StepPhase::migrate);
     dd_->migrate(water_, soil_, &left_home_);
     keep_known_stresses();
   }
@@ -351,6 +396,7 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   // Over several ranks, which particles the move takes to another home block (left_home_):
   // their home blocks before the move, compared after it.
   for (auto& left : left_home_) left.clear();
+  std::optional<StepPhaseScope> timed(std::in_place, times_, StepPhase::g2p_water, wait_clock());
   water_velocities();
   if (s_.mixture) mixture_volume_rates(dt);  // at the positions the water was spread from
   if (dd_) record_homes(water_);
@@ -360,6 +406,7 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
     s_.walls.clamp(water_.x[p]);
   }
   if (dd_) mark_moved(water_, left_home_[0]);
+  timed.emplace(times_, StepPhase::g2p_soil, wait_clock());
   wall_water_fill();
   soil_velocities();  // leaves the sums sum_i w_ip m_w,i / I_i in `saturation`
   const double full = s_.water.density * std::pow(grid_.spacing(), Dim) * s_.soil.porosity;  // kg in a node's pores
@@ -421,7 +468,7 @@ void Simulation<Dim>::remove_outflow() {
     std::array<double, 2 + Dim> all{};
     all[0] = step.water_mass, all[1] = step.soil_mass;
     for (int d = 0; d < Dim; ++d) all[2 + d] = step.momentum[d];
-    dd_->comm().all_reduce(all, mpi::Comm::Reduction::sum);
+    dd_->waited().time([&] { dd_->comm().all_reduce(all, mpi::Comm::Reduction::sum); });
     step.water_mass = all[0], step.soil_mass = all[1];
     for (int d = 0; d < Dim; ++d) step.momentum[d] = all[2 + d];
   }

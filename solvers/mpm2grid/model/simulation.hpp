@@ -10,6 +10,7 @@
 // The model and its step: docs/methods/mpm2grid.md, "Continuum model" and "Step n -> n+1".
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/materials/hencky_drucker_prager.hpp"
 #include "solvers/mpm2grid/materials/weakly_compressible_water.hpp"
+#include "solvers/mpm2grid/model/step_timers.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
 #include "solvers/mpm2grid/transfer/apic.hpp"
 
@@ -107,6 +109,8 @@ class Simulation {
   // The consistent drag's last KSP solve (zero before the first, or for the other schemes).
   const SolveStats& drag_stats() const { return drag_stats_; }
   long long steps() const { return steps_; }
+  // This rank's time per phase of step() since the simulation was built (model/step_timers.hpp).
+  const StepTimes& step_times() const { return times_; }
 
   // The largest stable dt now: cfl h / max |v_p|, cfl h / c for the water's and the soil's wave
   // speeds, and dt_max. Drag never limits it (implicit). COLLECTIVE.
@@ -122,8 +126,12 @@ class Simulation {
   const DomainDecomposition<Dim>* decomposition() const { return dd_ ? &*dd_ : nullptr; }
   DomainDecomposition<Dim>* decomposition() { return dd_ ? &*dd_ : nullptr; }
   // The sum of a value over the ranks (the value itself on one rank). COLLECTIVE.
-  double sum_over_ranks(double v) const { return dd_ ? dd_->comm().sum(v) : v; }
-  double max_over_ranks(double v) const { return dd_ ? dd_->comm().max(v) : v; }
+  double sum_over_ranks(double v) const { return dd_ ? dd_->waited().time([&] { return dd_->comm().sum(v); }) : v; }
+  double max_over_ranks(double v) const { return dd_ ? dd_->waited().time([&] { return dd_->comm().max(v); }) : v; }
+  // The largest of each value over the ranks, in place (one reduction). COLLECTIVE.
+  void max_over_ranks(std::span<double> values) const {
+    if (dd_) dd_->waited().time([&] { dd_->comm().all_reduce(values, mpi::Comm::Reduction::max); });
+  }
 
   // Sets the clock, step count and outflow record of a run read back from a checkpoint (the
   // particles are set through water() and soil()).
@@ -155,6 +163,9 @@ class Simulation {
   void soil_velocities();
   void record_homes(const Particles<Dim>& P);
   void mark_moved(const Particles<Dim>& P, std::vector<char>& left) const;
+  // Times the rest of the enclosing scope as `phase` (waits counted over several ranks).
+  StepPhaseScope phase(StepPhase p) { return {times_, p, wait_clock()}; }
+  const WaitClock* wait_clock() const { return dd_ ? &dd_->waited() : nullptr; }
 
   SimulationSettings<Dim> s_;
   Particles<Dim> water_, soil_;
@@ -185,6 +196,7 @@ class Simulation {
   std::optional<DomainDecomposition<Dim>> dd_;
   double time_ = 0;
   long long steps_ = 0;
+  StepTimes times_;
 };
 
 // Simulation<2> and Simulation<3> are instantiated in simulation.cpp, where the members are

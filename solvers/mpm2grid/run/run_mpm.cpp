@@ -127,6 +127,8 @@ class MpmRun {
       sample(0);
       output();
     }
+    // The steps' traffic, without the first distribution's (half of every rank's band moves).
+    if (const auto* dd = sim_.decomposition()) traffic_before_ = dd->stats();
     log_.info("{}D scene {}: h = {} m, {} water and {} soil particles, drag {}", Dim, scene_.name,
               scene_.simulation.h, count(sim_.water()), count(sim_.soil()), drag_name(scene_.simulation.drag));
     if (comm_.size() > 1) {
@@ -168,7 +170,7 @@ class MpmRun {
         log_.warn("stopped at step {} (t = {} s) on {}; continue with --restart latest", sim_.steps(), sim_.time(),
                   *why);
         record_extras();
-        record_.write(out_ / "run.json", timers_, "stopped: " + *why);
+        write_record("stopped: " + *why);
         return 0;
       }
     }
@@ -182,7 +184,9 @@ class MpmRun {
   // One step of the adaptive size, cut to land on the next sample, output or end time; then the
   // samples and outputs due.
   void advance() {
+    std::optional<ScopedPhase> checks(std::in_place, timers_, "dt limit");
     const StepLimit limit = sim_.stable_dt();
+    checks.reset();
     ++p_.limiters[limit.limiter];
     const double to_event = std::min({p_.next_sample, p_.next_output, scene_.time.end}) - sim_.time();
     const double dt = std::min(limit.dt, to_event);
@@ -200,15 +204,22 @@ class MpmRun {
                                      fmt::join(unused, ", ")));
     last_dt_ = dt;
     p_.smallest_dt = std::min(p_.smallest_dt, dt);
+    checks.emplace(timers_, "blow-up check");
     const double inlet_velocity = sim_.inlet() ? sim_.inlet()->velocity(sim_.time()) : 0.0;
     const double speed_limit = BlowUpCheck::speed_limit(scene_.simulation, inlet_velocity);
-    for (const auto* P : {&sim_.water(), &sim_.soil()}) {
-      // The worst particle of any rank: every rank stops with the same message.
-      const auto local = ParticleScan<Dim>::of(*P);
-      ParticleScan<Dim> scan;
-      scan.finite = !comm_.any(!local.finite);
-      scan.speed = comm_.max(local.finite ? local.speed : 0.0);
-      const char* species = P == &sim_.water() ? "water" : "soil";
+    // The worst particle of any rank, in one reduction: every rank stops with the same message.
+    const std::array<const Particles<Dim>*, 2> species_list{&sim_.water(), &sim_.soil()};
+    std::array<double, 4> worst{};  // per species: 1 when some position or velocity is not finite, the top speed
+    for (std::size_t k = 0; k < 2; ++k) {
+      const auto local = ParticleScan<Dim>::of(*species_list[k]);
+      worst[2 * k] = local.finite ? 0.0 : 1.0;
+      worst[2 * k + 1] = local.finite ? local.speed : 0.0;
+    }
+    sim_.max_over_ranks(worst);
+    for (std::size_t k = 0; k < 2; ++k) {
+      const bool finite = worst[2 * k] == 0;
+      const double speed = worst[2 * k + 1];
+      const char* species = k == 0 ? "water" : "soil";
       const auto where = fmt::format("the run blew up at step {} (t = {:.6g} s, dt = {:.4g} s limited by {})",
                                      sim_.steps(), sim_.time(), dt, limit.limiter);
       const auto fix = fmt::format("the last good checkpoint is kept in {}; lower time.cfl or time.dt_max{}",
@@ -216,14 +227,15 @@ class MpmRun {
                                    scene_.simulation.drag == DragScheme::explicit_euler
                                        ? ", or use drag: lumped (explicit drag is unstable above dt = 2 tau_d)"
                                        : "");
-      if (!scan.finite)
+      if (!finite)
         throw InputError(fmt::format("{}: a {} particle's position or velocity is not finite; {}", where, species, fix));
-      if (scan.speed > speed_limit)
+      if (speed > speed_limit)
         throw InputError(fmt::format("{}: energy blow-up, a {} particle moves at {:.4g} m/s, more than {} times the "
                                      "{:.4g} m/s that falling through the domain and the inflow can give; {}",
-                                     where, species, scan.speed, BlowUpCheck::kFactor,
+                                     where, species, speed, BlowUpCheck::kFactor,
                                      speed_limit / BlowUpCheck::kFactor, fix));
     }
+    checks.reset();
     const double end = scene_.time.end * (1 - 1e-12);
     if (sim_.time() >= p_.next_sample * (1 - 1e-12)) {
       sample(dt);
@@ -321,7 +333,7 @@ class MpmRun {
     write_state(w, sim_, p_);
     w.commit();
     if (comm_.is_root()) checkpoint::prune(checkpoints_, "checkpoint", scene_.checkpoints.keep);
-    record_.write(out_ / "run.json", timers_, fmt::format("running: checkpoint at step {}", sim_.steps()));
+    write_record(fmt::format("running: checkpoint at step {}", sim_.steps()));
     last_checkpoint_step_ = sim_.steps();
     log_.info("checkpoint {} written", path.filename().string());
   }
@@ -370,9 +382,25 @@ class MpmRun {
     for (const auto& [why, n] : p_.limiters)
       limits += fmt::format("{}{}: {} steps", limits.empty() ? "" : ", ", why, n);
     record_extras();
-    record_.write(out_ / "run.json", timers_, "completed");
+    write_record("completed");
     log_.info("done: {} steps to t = {} s (dt limited by {}); {} particle files", sim_.steps(), sim_.time(), limits,
               p_.files);
+  }
+
+  // run.json with the step's phases (model/step_timers.hpp) beside the run's: "step/<phase>"
+  // and, over several ranks, "step/<phase>/wait" (blocked in MPI), each with this run's steps
+  // as its calls. COLLECTIVE.
+  void write_record(const std::string& status) {
+    PhaseTimers all = timers_;
+    const StepTimes& t = sim_.step_times();
+    const long long steps = sim_.steps() - first_step_;
+    for (std::size_t k = 0; k < kStepPhases; ++k) {
+      const std::string name = std::string("step/") + kStepPhaseNames[k];
+      if (t.seconds[k] == 0) continue;  // a phase this rank never ran (the halo's on one rank)
+      all.add(name, t.seconds[k], steps);
+      if (t.waited[k] > 0) all.add(name + "/wait", t.waited[k], steps);
+    }
+    record_.write(out_ / "run.json", all, status);
   }
 
   // What run.json holds beside the timers, for a finished or a stopped run. COLLECTIVE.
@@ -382,10 +410,15 @@ class MpmRun {
     if (const auto* dd = sim_.decomposition()) record_decomposition(*dd, sim_.steps() - first_step_);
   }
 
-  // The decomposition's traffic in run.json: sums over the ranks per step of this run (or of its
-  // part since the restart), the load at the end. COLLECTIVE.
+  // The decomposition's traffic in run.json: sums over the ranks per step of this run's steps (or
+  // of its part since the restart; the first distribution not counted), the load at the end.
+  // COLLECTIVE.
   void record_decomposition(const DomainDecomposition<Dim>& dd, long long steps) {
-    const auto& st = dd.stats();
+    DecompositionStats st = dd.stats();
+    const DecompositionStats& before = traffic_before_;
+    st.halo_bytes -= before.halo_bytes, st.halo_messages -= before.halo_messages;
+    st.migration_bytes -= before.migration_bytes, st.migration_messages -= before.migration_messages;
+    st.migrated -= before.migrated;
     const double per_step = 1.0 / static_cast<double>(std::max(1LL, steps));
     auto& j = record_.extra()["decomposition"];
     j["ranks"] = comm_.size();
@@ -393,6 +426,8 @@ class MpmRun {
     j["rebalances"] = st.rebalances;
     j["imbalance_at_last_check"] = st.imbalance;
     j["halo_bytes_per_step"] = static_cast<double>(comm_.sum(st.halo_bytes)) * per_step;
+    j["halo_messages_per_step"] = static_cast<double>(comm_.sum(st.halo_messages)) * per_step;
+    j["migration_messages_per_step"] = static_cast<double>(comm_.sum(st.migration_messages)) * per_step;
     j["migrated_particles_per_step"] = static_cast<double>(comm_.sum(st.migrated)) * per_step;
     j["migration_bytes_per_step"] = static_cast<double>(comm_.sum(st.migration_bytes)) * per_step;
     j["claimed_blocks"] = st.claimed_blocks;
@@ -427,6 +462,7 @@ class MpmRun {
   Simulation<Dim> sim_;
   std::filesystem::path out_, checkpoints_;
   double half_spacing_ = 0, last_dt_ = 0;
+  DecompositionStats traffic_before_;  // the decomposition's counts when the steps began
   long long drag_iterations_ = 0;  // most KSP iterations of one consistent drag solve in this run
   long long first_step_ = 0;            // the step this run (or its restart) began at
   long long last_checkpoint_step_ = -1;  // the step of the newest checkpoint of this run
