@@ -11,6 +11,7 @@
 #include "solvers/foam_erosion_fem/case/dam_cells.hpp"
 #include "solvers/foam_erosion_fem/coupling/erosion_records.hpp"
 #include "solvers/foam_erosion_fem/coupling/remesh.hpp"
+#include "solvers/foam_erosion_fem/io/foam_reader.hpp"
 #include "solvers/foam_erosion_fem/coupling/wall_shear.hpp"
 #include "solvers/foam_erosion_fem/erosion/fem_erosion.hpp"
 #include "solvers/foam_erosion_fem/io/foam_reader.hpp"
@@ -108,60 +109,73 @@ CoupledRunResult run_coupled(const FoamScene& s, FoamRunner& runner, PreparedCas
   }
 
   for (int k = first; k <= steps; ++k) {
-    write_control_dict(s, runner.case_dir(), end_of(k));
-    {
-      ScopedPhase phase(timers, "flow");
-      const auto flow = runner.run("interFoam", {}, s.run.ranks, "", /*stoppable=*/true);
-      r.flow_steps += flow.time_steps;
-      r.max_courant = std::max(r.max_courant, flow.max_courant);
-      log.info("flow to t = {} s: {} steps in {:.1f} s, max Courant {:.3g}", end_of(k), flow.time_steps,
-               flow.wall_seconds, flow.max_courant);
-    }
-    if (s.run.ranks > 1) runner.run("reconstructPar", {"-latestTime"});
-    if (!erodes) break;
-
-    ScopedPhase phase(timers, "erosion");
-    const fs::path latest = latest_time_directory(runner.case_dir());
-    const double t_now = std::stod(latest.filename().string());
-    const auto faces = read_wall_shear(runner.case_dir(), latest, kDamPatch, s.flow.water, s.flow.air);
-    const auto shear = shear_on_elements(curve.nodes(), faces);
-    ErosionRow row;
-    row.step = k;
-    row.time = t_now;
-    row.crest_length = s.dam.crest_length;
-    row.max_shear = *std::max_element(shear.begin(), shear.end());
+    // A failed OpenFOAM program or an unreadable result ends the loop as a failed step: every
+    // finished step stays in the records and the result, and the message says which step failed.
     try {
-      row.report = erode(curve, shear, t_now - t_prev, settings);
-    } catch (const CurveValidityError& e) {
-      r.failure = fmt::format("erosion step {} at t = {} s: {}", k, t_now, e.what());
+      write_control_dict(s, runner.case_dir(), end_of(k));
+      {
+        ScopedPhase phase(timers, "flow");
+        const auto flow = runner.run("interFoam", {}, s.run.ranks, "", /*stoppable=*/true);
+        r.flow_steps += flow.time_steps;
+        r.max_courant = std::max(r.max_courant, flow.max_courant);
+        log.info("flow to t = {} s: {} steps in {:.1f} s, max Courant {:.3g}", end_of(k), flow.time_steps,
+                 flow.wall_seconds, flow.max_courant);
+      }
+      if (s.run.ranks > 1) runner.run("reconstructPar", {"-latestTime"});
+      if (!erodes) break;
+
+      ScopedPhase phase(timers, "erosion");
+      const fs::path latest = latest_time_directory(runner.case_dir());
+      const double t_now = std::stod(latest.filename().string());
+      const auto faces = read_wall_shear(runner.case_dir(), latest, kDamPatch, s.flow.water, s.flow.air);
+      const auto shear = shear_on_elements(curve.nodes(), faces);
+      ErosionRow row;
+      row.step = k;
+      row.time = t_now;
+      row.crest_length = s.dam.crest_length;
+      row.max_shear = *std::max_element(shear.begin(), shear.end());
+      try {
+        row.report = erode(curve, shear, t_now - t_prev, settings);
+      } catch (const CurveValidityError& e) {
+        r.failure = fmt::format("erosion step {} at t = {} s: {}", k, t_now, e.what());
+        return r;
+      }
+      row.total_area = r.eroded_area + row.report.eroded_area;
+      layout = layout.with_dam_nodes(curve.nodes());
+      // The re-mesh for the next step first: the result and the records take the step once it
+      // is complete.
+      if (k < steps && fluid_cells(prepared.mesh.background_centres, layout) != prepared.mesh.fluid) {
+        ScopedPhase remesh_phase(timers, "remesh");
+        prepared.mesh = remesh_case(s, layout, prepared.mesh, runner,
+                                    out / "cases" / fmt::format("segment_{:03d}", r.remeshes), end_of(k + 1), prepared.runs);
+        row.remeshed = true;
+        ++r.remeshes;
+        state.mesh_nodes = curve.nodes();
+      }
+      t_prev = t_now;
+      r.eroded_area = row.total_area;
+      r.erosion_steps = k;
+      r.final_crest = highest_node(curve);
+      row.cells = prepared.mesh.cells;
+      records.add_step(row);
+      records.add_profile(k, t_now, curve);
+      state.step = k;
+      state.time = t_now;
+      state.remeshes = r.remeshes;
+      state.eroded_area = r.eroded_area;
+      state.nodes = curve.nodes();
+      state.write(out / "state.json");
+      log.info("erosion step {} at t = {} s: max shear {:.3g} Pa, eroded {:.3g} m^2/m ({:.3g} in total), deepest {:.3g} m{}",
+               k, t_now, row.max_shear, row.report.eroded_area + 0.0, r.eroded_area, row.report.max_depth,
+               row.remeshed ? fmt::format(", re-meshed: {} flow cells", prepared.mesh.cells) : "");
+    } catch (const FoamRunError& e) {
+      r.failure = fmt::format("coupling step {} of {} (flow from t = {} to {} s): {}", k, steps, t_prev, end_of(k), e.what());
+      return r;
+    } catch (const FoamReadError& e) {
+      r.failure = fmt::format("coupling step {} of {} (flow from t = {} to {} s): cannot read its result: {}", k, steps,
+                              t_prev, end_of(k), e.what());
       return r;
     }
-    t_prev = t_now;
-    r.eroded_area += row.report.eroded_area;
-    row.total_area = r.eroded_area;
-    r.erosion_steps = k;
-    r.final_crest = highest_node(curve);
-    layout = layout.with_dam_nodes(curve.nodes());
-    if (k < steps && fluid_cells(prepared.mesh.background_centres, layout) != prepared.mesh.fluid) {
-      ScopedPhase remesh_phase(timers, "remesh");
-      prepared.mesh = remesh_case(s, layout, prepared.mesh, runner,
-                                  out / "cases" / fmt::format("segment_{:03d}", r.remeshes), end_of(k + 1), prepared.runs);
-      row.remeshed = true;
-      ++r.remeshes;
-      state.mesh_nodes = curve.nodes();
-    }
-    row.cells = prepared.mesh.cells;
-    records.add_step(row);
-    records.add_profile(k, t_now, curve);
-    state.step = k;
-    state.time = t_now;
-    state.remeshes = r.remeshes;
-    state.eroded_area = r.eroded_area;
-    state.nodes = curve.nodes();
-    state.write(out / "state.json");
-    log.info("erosion step {} at t = {} s: max shear {:.3g} Pa, eroded {:.3g} m^2/m ({:.3g} in total), deepest {:.3g} m{}",
-             k, t_now, row.max_shear, row.report.eroded_area + 0.0, r.eroded_area, row.report.max_depth,
-             row.remeshed ? fmt::format(", re-meshed: {} flow cells", prepared.mesh.cells) : "");
   }
   prepared.layout = layout;
   return r;

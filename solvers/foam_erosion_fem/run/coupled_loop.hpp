@@ -5,8 +5,10 @@
 // the flow cells the case is re-meshed and its fields mapped (coupling/remesh.hpp). A scene with
 // kd = 0 runs the flow in one go.
 //
-// FoamRunError (a failed OpenFOAM program) and FoamRunStopped (a stop request) propagate; a curve the erosion step cannot keep valid
-// ends the loop with `failure` set. Either way erosion.csv and profiles.csv hold every step done.
+// A failed OpenFOAM program (FoamRunError), a result that cannot be read (FoamReadError) or a
+// curve the erosion step cannot keep valid ends the loop with `failure` set, naming the step;
+// FoamRunStopped (a stop request) propagates. Either way erosion.csv, profiles.csv, state.json
+// and the result hold every step finished.
 #include <filesystem>
 #include <string>
 

@@ -141,7 +141,11 @@ int run_foam_erosion(const config::Config& cfg, const RunOptions& o, Logger& log
       summary.set("final_crest_height", result.final_crest - scene.dam.foundation, "m");
       if (!result.failure.empty()) {
         log.error("{}", result.failure);
-        status = "erosion step failed";
+        log.warn("the {} finished coupling step(s) are kept: erosion.csv, profiles.csv, state.json and summary.json in "
+                 "{}",
+                 result.erosion_steps, out.string());
+        summary.set("failure", result.failure.substr(0, result.failure.find('\n')));  // its first line
+        status = "failed";
         exit_code = 3;
       }
     }
