@@ -9,10 +9,13 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "core/config/config.hpp"
 #include "solvers/breach/erosion/headcut.hpp"
 #include "solvers/breach/hydraulics/open_channel.hpp"
 #include "solvers/breach/hydraulics/pipe_flow.hpp"
+#include "solvers/breach/model/breach_state.hpp"
 #include "solvers/breach/model/simulate.hpp"
 #include "tests/support/test_dirs.hpp"
 
@@ -228,6 +231,67 @@ TEST(BreachModel, PipeCollapseTimeMatchesQuadrature) {
   double sum = inv(a) + inv(b);
   for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * inv(a + i * h);
   EXPECT_NEAR(*r.initiation_time, sum * h / 3.0, 1e-7 * sum * h / 3.0);
+}
+
+// A Teton-sized dam (93 m) whose pipe, 23 m above the foundation, grows to the strength limit
+// N s_u / gamma_t = 3.85 x 100 kPa / 18.85 kN/m^3 = 20.4 m before its roof collapses (issue 31).
+const std::string kTallDam = R"(
+dam: {height: 93 m, crest_width: 11 m, crest_length: 945 m, upstream_slope: 2.5, downstream_slope: 2}
+soil: {erodibility: 5 cm^3/(N s), critical_shear_stress: 1 Pa, undrained_shear_strength: 100 kPa,
+       unit_weight: 18.85 kN/m^3}
+reservoir: {storage: {type: power_law, alpha: 41160, exponent: 2, bottom: 0 m}, initial_level: 88 m}
+inflow: {type: constant, discharge: 0}
+internal_erosion: {elevation: 23 m, initial_diameter: 0.5 m}
+time: {end: 12 h}
+)";
+
+TEST(BreachModel, CollapsedRoofFillsThePipe) {
+  // The roof (width d, from the crown to the crest) falls into the pipe and the void moves up:
+  // the breach starts from a notch of the pipe's width at the crest, pi d^2 / 4 in area without
+  // bulking, less (B - 1) d (H - d) with it, none once the bulked roof fills the trench. Before
+  // issue 31 the whole height from the pipe's invert opened at once (70 m here).
+  for (const double bulking : {1.0, 1.05, 1.5}) {
+    const Scene s = scene({fmt::format("internal_erosion.debris_bulking={}", bulking)}, kTallDam);
+    const BreachState model(s);
+    StateVector y = model.initial();
+    const double d = 20.0, depth = 93.0 - 23.0;
+    y[kBottomWidth] = d;
+    model.collapse_roof(y);
+    const double open = std::max(0.0, std::numbers::pi / 4 * d * d - (bulking - 1) * d * (depth - d));
+    EXPECT_NEAR(y[kInvert], 93.0 - open / d, 1e-12 * 93) << "bulking " << bulking;
+    EXPECT_DOUBLE_EQ(y[kBottomWidth], d);
+  }
+  // In a run: the collapse (at the strength limit) leaves the notch, and the outflow falls from
+  // the pipe's to the notch's: the peak is the pipe's at the collapse, not a 70 m deep notch's.
+  double before = 0.0, invert_after = 0.0;
+  bool collapsed = false;
+  const Scene s = scene({"output.interval=1 s"}, kTallDam);
+  const Result r = simulate(s, [&](const Sample& x) {
+    if (x.stage == Stage::internal_erosion) before = x.flows.total();
+    if (x.stage == Stage::breach_formation && !collapsed) collapsed = true, invert_after = x.invert;
+  });
+  ASSERT_TRUE(r.failed());
+  const double d = 3.85 * 100e3 / 18.85e3;
+  EXPECT_NEAR(invert_after, 93.0 - std::numbers::pi / 4 * d, 1e-3) << "one second of erosion after the collapse";
+  EXPECT_NEAR(r.peak_outflow, before, 1e-3 * before) << "the pipe's outflow when its roof fell";
+  EXPECT_LT(r.peak_outflow, 10000.0) << "the notch from the pipe's invert gave 59,857 m^3/s";
+}
+
+TEST(BreachModel, PipeCollapsePeakDoesNotDependOnTheOutputInterval) {
+  // The rows an executable writes (an observer's) make the steps land on their times; the peak
+  // and the collapse time are the solution's, to the integrator's accuracy: 1e-4, the bound
+  // ResultsDoNotDependOnTheStep holds the default tolerance to (measured: 1.1e-5 on the
+  // collapse time, less on the peak).
+  long rows = 0;
+  const auto write_row = [&](const Sample&) { ++rows; };
+  const Result fine = simulate(scene({"output.interval=30 s"}, kTallDam), write_row);
+  EXPECT_GT(rows, 12 * 120) << "a row every 30 s";
+  for (const char* interval : {"output.interval=600 s", "output.interval=1 h"}) {
+    const Result r = simulate(scene({interval}, kTallDam), write_row);
+    EXPECT_NEAR(r.peak_outflow, fine.peak_outflow, 1e-4 * fine.peak_outflow) << interval;
+    EXPECT_NEAR(*r.initiation_time, *fine.initiation_time, 1e-4 * *fine.initiation_time) << interval;
+    EXPECT_NEAR(r.eroded_volume, fine.eroded_volume, 1e-4 * fine.eroded_volume) << interval;
+  }
 }
 
 TEST(BreachModel, ResultsDoNotDependOnTheStep) {

@@ -65,6 +65,19 @@ Flows BreachState::flows(double t, const StateVector& y, Stage stage) const {
   return f;
 }
 
+void BreachState::collapse_roof(StateVector& y) const {
+  // Per metre along the flow: the roof, the block of the pipe's width d from its crown to the
+  // crest, falls into the pipe and the void moves up to the crest (a sinkhole). In the d-wide
+  // trench from the pipe's invert to the crest (depth H) the soil beside the pipe stays, d^2 -
+  // pi d^2 / 4, and the roof's d (H - d) takes B times its volume: the notch left open at the
+  // crest is pi d^2 / 4 - (B - 1) d (H - d) over the width d (none once the bulked roof fills
+  // the trench: the collapse then plugs the pipe).
+  const double d = y[kBottomWidth], depth = scene_.dam.crest() - y[kInvert];
+  const double open = std::numbers::pi / 4.0 * d * d -
+                      (scene_.internal_erosion.debris_bulking - 1.0) * d * std::max(depth - d, 0.0);
+  y[kInvert] = scene_.dam.crest() - std::max(open, 0.0) / d;
+}
+
 double BreachState::headcut_height(const StateVector& y) const {
   return scene_.breach.formation_depth + scene_.dam.surface(y[kHeadcutPosition]) - scene_.dam.foundation;
 }
@@ -162,6 +175,9 @@ double BreachState::eroded_volume(const StateVector& y, Stage stage) const {
   const double b0 = scene_.breach.initial_width;
   if (stage == Stage::internal_erosion)
     return std::numbers::pi / 4.0 * y[kBottomWidth] * y[kBottomWidth] * pipe_length(y);
+  // After a pipe's collapse: the cut above the debris (no face strip or headcut channel was
+  // eroded in this mode).
+  if (scene_.internal_erosion.enabled) return dam.cut_volume(y[kBottomWidth], scene_.breach.side_slope, y[kInvert]);
   // The face strip of depth min(erosion, formation depth): all of the face in stage 1, the part
   // upstream of the headcut afterwards.
   if (stage == Stage::surface_erosion) return b0 * std::max(y[kFaceErosion], 0.0) * dam.downstream_face_length();

@@ -97,6 +97,9 @@ class BreachState {
     return y[kStorageLessInflow] + (scene_.inflow.cumulative(t) - inflow_at_start_);
   }
 
+  // The pipe's roof collapses (the end of stage 0): the invert and bottom width of y become the
+  // breach's at the top of the roof's debris (InternalErosion::debris_bulking).
+  void collapse_roof(StateVector& y) const;
   double headcut_height(const StateVector& y) const;
   double invert(const StateVector& y, Stage stage) const;
   double top_width(const StateVector& y, Stage stage) const;

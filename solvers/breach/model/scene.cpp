@@ -40,6 +40,7 @@ InternalErosion read_internal_erosion(const config::Section& s) {
   ie.initial_diameter = s.quantity("initial_diameter", "m", ie.initial_diameter, Range::positive());
   ie.entrance_loss = s.number("entrance_loss", ie.entrance_loss, Range::at_least(0));
   ie.collapse_fraction = s.number("collapse_fraction", ie.collapse_fraction, Range::between(0.05, 1.0));
+  ie.debris_bulking = s.number("debris_bulking", ie.debris_bulking, Range::between(1.0, 2.0));
   return ie;
 }
 

@@ -9,7 +9,7 @@
 //   inflow:    {type: table | constant | sine | triangular, ...}
 //   breach:    {initial_width, side_slope, face_roughness}                       # all optional
 //   headcut:   {formation_depth, jet_friction, jet_diffusion, critical_height_factor}  # optional
-//   internal_erosion: {elevation, initial_diameter, entrance_loss, collapse_fraction}   # optional:
+//   internal_erosion: {elevation, initial_diameter, entrance_loss, collapse_fraction, debris_bulking}  # optional:
 //              the breach starts from a pipe instead of from overtopping
 //   time:      {start, end, step: adaptive | fixed, tolerance, dt, max_step}
 //   output:    {interval}                                                         # executable only
@@ -72,6 +72,13 @@ struct InternalErosion {
   // assumptions: the criterion WinDAM C uses is not in the sources at hand. A pipe that starts
   // at or above the strength limit collapses at once.
   double collapse_fraction = 0.5;
+  // The collapsed roof stays in the breach as debris: the roof (the block of the pipe's width
+  // from its crown to the crest) falls into the pipe, taking this factor times its in-place
+  // volume (loose over in-place, >= 1), and the void moves up to the crest; the breach forms
+  // from the debris top, a notch of the pipe's width, and the flow erodes the debris like the
+  // embankment. 1 (no bulking): the notch has the pipe's cross-section area, pi d / 4 deep. An
+  // assumption (docs/breach.md), an input.
+  double debris_bulking = 1.0;
   double geometric_collapse_diameter(double crest) const { return collapse_fraction * (crest - elevation); }
 };
 

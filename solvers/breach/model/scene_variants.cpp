@@ -99,6 +99,8 @@ const std::vector<Key>& key_table() {
        [](Scene& s) -> double& { return s.internal_erosion.entrance_loss; }},
       {"internal_erosion.collapse_fraction", "", Range::between(0.05, 1.0), Form::internal_erosion,
        [](Scene& s) -> double& { return s.internal_erosion.collapse_fraction; }},
+      {"internal_erosion.debris_bulking", "", Range::between(1.0, 2.0), Form::internal_erosion,
+       [](Scene& s) -> double& { return s.internal_erosion.debris_bulking; }},
   };
   return table;
 }

@@ -155,8 +155,10 @@ void Run::apply_event(const BreachState::Event& e) {
       stage_ = Stage::headcut_advance;
       result_.headcut_formation_time = t_ - sc_.time.start;
       break;
-    case Stage::internal_erosion:  // the pipe's roof collapses: the breach forms from its invert
-    case Stage::headcut_advance:   // the headcut reaches the upstream edge of the crest
+    case Stage::internal_erosion:  // the pipe's roof collapses: the breach forms from its debris
+      model_.collapse_roof(y_);
+      [[fallthrough]];
+    case Stage::headcut_advance:  // the headcut reaches the upstream edge of the crest
       stage_ = Stage::breach_formation;
       result_.initiation_time = t_ - sc_.time.start;
       capped_ = y_[kBottomWidth] >= sc_.dam.crest_length;
