@@ -56,18 +56,19 @@ std::unique_ptr<Model> BreachModel::read(const config::Section& s, const std::ve
   return std::make_unique<BreachModel>(scene, std::move(set), std::move(responses), once);
 }
 
+breach::Scene BreachModel::scene_with(const std::map<std::string, double>& values) const {
+  std::vector<std::pair<std::string, std::string>> settings;
+  for (const auto& [key, t] : set_) settings.emplace_back(key, t.render(values));
+  if (auto scene = variants_ ? variants_->with(settings) : std::nullopt) return *scene;
+  std::vector<std::string> overrides;
+  for (const auto& [key, value] : settings) overrides.push_back(key + "=" + value);
+  return breach::Scene::read_complete(config::Config::from_file(scene_, overrides));
+}
+
 Outcome BreachModel::evaluate(long, const std::map<std::string, double>& values) const {
   Outcome out;
   try {
-    std::vector<std::pair<std::string, std::string>> settings;
-    for (const auto& [key, t] : set_) settings.emplace_back(key, t.render(values));
-    std::optional<breach::Scene> scene = variants_ ? variants_->with(settings) : std::nullopt;
-    if (!scene) {
-      std::vector<std::string> overrides;
-      for (const auto& [key, value] : settings) overrides.push_back(key + "=" + value);
-      scene = breach::Scene::read_complete(config::Config::from_file(scene_, overrides));
-    }
-    const auto summary = breach::make_summary(breach::simulate(*scene)).json();
+    const auto summary = breach::make_summary(breach::simulate(scene_with(values))).json();
     for (const auto& r : responses_) {
       const auto& v = summary.at(r);
       if (v.is_boolean()) {

@@ -39,9 +39,13 @@ class BreachModel : public Model {
   static std::unique_ptr<Model> read(const config::Section& model, const std::vector<std::string>& variables);
 
   Outcome evaluate(long eval_id, const std::map<std::string, double>& values) const override;
+  // The templates rendered and the scene read with them, without a run.
+  void check(const std::map<std::string, double>& values) const override { scene_with(values); }
   const std::vector<std::string>& responses() const override { return responses_; }
 
  private:
+  breach::Scene scene_with(const std::map<std::string, double>& values) const;
+
   std::filesystem::path scene_;
   std::vector<std::pair<std::string, Template>> set_;
   std::vector<std::string> responses_;

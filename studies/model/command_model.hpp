@@ -52,6 +52,10 @@ class CommandModel : public Model {
                                      const std::filesystem::path& work_root);
 
   Outcome evaluate(long eval_id, const std::map<std::string, double>& values) const override;
+  // Every template file rendered (not written): the program itself is not run.
+  void check(const std::map<std::string, double>& values) const override {
+    for (const auto& [tpl, to] : s_.templates) tpl.render(values);
+  }
   const std::vector<std::string>& responses() const override { return s_.responses; }
 
  private:

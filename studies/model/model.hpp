@@ -23,6 +23,11 @@ class Model {
   virtual ~Model() = default;
   // eval_id: the evaluation's number in the study (work directories and Dakota files carry it).
   virtual Outcome evaluate(long eval_id, const std::map<std::string, double>& values) const = 0;
+  // Renders every template with `values` and checks the result against the model as far as it
+  // can without evaluating (the breach model: the scene takes every key, unit and value); an
+  // InputError names the template or key. A study calls it once before its first evaluation,
+  // so a mistake that would fail every evaluation stops it at once. Nothing to check by default.
+  virtual void check(const std::map<std::string, double>& /*values*/) const {}
   virtual const std::vector<std::string>& responses() const = 0;
 };
 

@@ -85,6 +85,26 @@ void write_tables(const std::filesystem::path& out, const std::vector<std::strin
   io::write_file_atomic(out / "tabular.csv", csv);
 }
 
+// Every template rendered with each variable at its median and checked against the model before
+// anything runs: a misspelt key, a wrong unit or a template Python would reject stops the study
+// here (exit 2) instead of failing every evaluation. The median is the value least likely to be
+// out of the model's range; a value that only some points take still fails just those points.
+void check_model(const Model& model, const std::vector<Variable>& variables, const std::string& source) {
+  std::map<std::string, double> values;
+  std::vector<std::string> shown;
+  for (const auto& v : variables) {
+    values[v.name] = quantile(v.distribution, 0.5);
+    shown.push_back(fmt::format("{} = {}", v.name, format_number(values[v.name])));
+  }
+  try {
+    model.check(values);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: the model rejects the study's inputs before any evaluation (checked with every "
+                                 "variable at its median: {}): {}",
+                                 source, fmt::join(shown, ", "), e.what()));
+  }
+}
+
 }  // namespace
 
 StudyCounts run_study(const config::Config& spec, const StudyOptions& options, Logger& log) {
@@ -100,6 +120,7 @@ StudyCounts run_study(const config::Config& spec, const StudyOptions& options, L
   const int concurrency =
       execution.has("concurrency") ? static_cast<int>(execution.integer("concurrency", cores, 1, 4096)) : cores;
   spec.finish();
+  check_model(*model, variables, spec.source_name());
 
   const bool distributed = options.comm && options.comm->size() > 1;
   const bool writer = !distributed || options.comm->is_root();  // the rank that writes files

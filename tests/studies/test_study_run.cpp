@@ -120,19 +120,42 @@ TEST(StudyRun, FailedEvaluationsAreRecordedAndRetried) {
   EXPECT_EQ(run(dir / "f", "", true, true).run, 3u);
 }
 
-// A study none of whose evaluations runs stops with an error quoting the first failure (it exited
-// 0 before): here a misspelt key in the model's `set`, which every evaluation repeats. The tables
-// are written first.
-TEST(StudyRun, AStudyWhoseEvaluationsAllFailIsAnError) {
+// A mistake every evaluation would repeat (here a misspelt key in the model's `set`) stops the
+// study before its first evaluation: the templates are rendered with every variable at its median
+// and checked against the scene (issue 31; it ran all 9 and then failed). Nothing is written.
+TEST(StudyRun, AMisspeltKeyStopsTheStudyBeforeAnyEvaluation) {
   const auto dir = suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF));
   std::string text = spec();
   const auto at = text.find("soil.erodibility");
   text.replace(at, std::string("soil.erodibility").size(), "soil.erodability");
   const auto what = suite::testing::input_error_of([&] { run(dir / "misspelt", text); });
-  EXPECT_NE(what.find("every one of the 9 evaluations failed; the first (evaluation 1): "), std::string::npos) << what;
+  EXPECT_NE(what.find("the model rejects the study's inputs before any evaluation (checked with every variable at "
+                      "its median: kd = 30, su = 17.5)"),
+            std::string::npos)
+      << what;
   EXPECT_NE(what.find("erodability"), std::string::npos) << what;
-  EXPECT_TRUE(fs::exists(dir / "misspelt" / "tabular.csv"));
+  EXPECT_FALSE(fs::exists(dir / "misspelt" / "ledger.jsonl"));
+  // A template Python would reject, the same.
+  std::string inf = spec();
+  inf.replace(inf.find("{kd} cm^3/(N s)"), std::string("{kd} cm^3/(N s)").size(), "{kd/0} cm^3/(N s)");
+  EXPECT_NE(suite::testing::input_error_of([&] { run(dir / "inf", inf); }).find("before any evaluation"),
+            std::string::npos);
+  // Values only some points take still fail just those points: kd from -10 is rejected by the
+  // scene, but the median (20) is not.
   EXPECT_NO_THROW(run(dir / "partly", spec(-10.0))) << "some evaluations failing is a result";
+}
+
+// A study none of whose evaluations gives its responses stops with an error quoting the first
+// failure (it exited 0 before) once the tables are written: here no breach, so no initiation time.
+TEST(StudyRun, AStudyWhoseEvaluationsAllFailIsAnError) {
+  const auto dir = suite::testing::scratch_dir(suite::mpi::Comm(MPI_COMM_SELF));
+  std::string text = spec();
+  const std::string set = "set: {";
+  text.insert(text.find(set) + set.size(), "inflow.peak: \"0 m^3/s\", reservoir.initial_level: \"5 m\", ");
+  const auto what = suite::testing::input_error_of([&] { run(dir / "dry", text); });
+  EXPECT_NE(what.find("every one of the 9 evaluations failed; the first (evaluation 1): "), std::string::npos) << what;
+  EXPECT_NE(what.find("breach_initiation_time"), std::string::npos) << what;
+  EXPECT_TRUE(fs::exists(dir / "dry" / "tabular.csv"));
 }
 
 TEST(StudyRun, RelativePathsSurviveAResumeFromElsewhere) {

@@ -7,8 +7,9 @@
 //              the owner holds the complete sums (mass, momentum, force, drag);
 //   forward(): after the grid solve, the owner's results (velocities) overwrite the ghost copies,
 //              so G2P reads the same node values on every rank.
-// The reverse sums send only the nodes with values (the ones the holder's particles reach, about
-// half of a ghost block's), and the velocities go back to just those (forward_touched()).
+// The reverse sums send only the nodes with values (the ones the holder's particles reach: on
+// Table 3.4 example 2 the halo's bytes fell 3.6-fold), and the velocities go back to just those
+// (forward_touched()). A block's node bits travel as the bytes of one double.
 // plan() sets up who sends what: each rank tells each owner which of its blocks it holds as
 // ghosts, and the owner activates any of them its own particles do not touch. Blocks travel in
 // the ghost holder's order and are summed in rank order: the sums do not depend on timing.
