@@ -408,6 +408,20 @@ TEST(BreachModel, BadInputIsRejectedWithTheKeyAndTheFix) {
   EXPECT_NO_THROW(scene({"reservoir.storage.bottom=-1 m"})) << "a bottom below the foundation is a deeper reservoir";
   has(error({"soil.d75=0.2 mm", "soil.grain_roughness=0.02"}), "either d75 or grain_roughness");
   has(error({"reservoir.spillway={table: [[10 m, 5 m^3/s], [11 m, 40 m^3/s]]}"}), "must have discharge 0");
+  // Issue 31: at least 25 cases in this list.
+  has(error({"soil.critical_shear_stress=-1 Pa"}), "key 'soil.critical_shear_stress'");
+  has(error({"soil.erodability=3 cm^3/(N s)"}), "did you mean 'erodibility'");
+  has(error({"soil.d75=-1 mm"}), "key 'soil.d75'");
+  has(error({"dam.crest_length=0 m"}), "key 'dam.crest_length'");
+  has(error({"gravity=0 m/s^2"}), "key 'gravity'");
+  has(error({"breach.side_slope=-1"}), "key 'breach.side_slope'");
+  has(error({"inflow.type=weird"}), "must be one of");
+  has(error({"time.tolerance=0"}), "key 'time.tolerance'");
+  has(error({"time.step=fixed"}), "time.dt");
+  has(error({"output.interval=0 s"}), "key 'output.interval'");
+  has(error({"internal_erosion={elevation: 20 m}"}), "internal_erosion.elevation");
+  has(error({"internal_erosion={elevation: 3 m, initial_diameter: 6 m}"}), "collapse diameter");
+  has(error({"internal_erosion={elevation: 3 m, debris_bulking: 3}"}), "key 'internal_erosion.debris_bulking'");
 }
 
 }  // namespace
