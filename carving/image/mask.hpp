@@ -1,7 +1,10 @@
 #pragma once
 // A binary silhouette (1 = seed) with its integral image, so the number of seed pixels in any
 // axis-aligned rectangle costs four lookups: the whole-cell test of hierarchical carving.
-// Pixels are stored row by row: index y * width + x.
+// Pixels are stored row by row: index y * width + x. The integral image covers only the box of
+// the seed pixels (outside it there are none): a seed fills a few percent of a frame, and the
+// whole frame's integral image was a tenth of a seed's measurement time.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -23,14 +26,20 @@ class Mask {
 
   // Seed pixels in the inclusive rectangle [x0, x1] x [y0, y1], which must lie in the image.
   long long count(int x0, int y0, int x1, int y1) const {
-    const auto w = static_cast<std::size_t>(width_) + 1;
-    return sum_[(y1 + 1) * w + (x1 + 1)] - sum_[y0 * w + (x1 + 1)] - sum_[(y1 + 1) * w + x0] + sum_[y0 * w + x0];
+    x0 = std::max(x0, box_x0_) - box_x0_, y0 = std::max(y0, box_y0_) - box_y0_;
+    x1 = std::min(x1, box_x1_) - box_x0_, y1 = std::min(y1, box_y1_) - box_y0_;
+    if (x0 > x1 || y0 > y1) return 0;
+    const auto w = static_cast<std::size_t>(box_x1_ - box_x0_) + 2;
+    const auto ux0 = static_cast<std::size_t>(x0), uy0 = static_cast<std::size_t>(y0);
+    const auto ux1 = static_cast<std::size_t>(x1) + 1, uy1 = static_cast<std::size_t>(y1) + 1;
+    return sum_[uy1 * w + ux1] - sum_[uy0 * w + ux1] - sum_[uy1 * w + ux0] + sum_[uy0 * w + ux0];
   }
 
  private:
   int width_ = 0, height_ = 0;
   std::vector<std::uint8_t> pixels_;
-  std::vector<std::int32_t> sum_;  // (width + 1) x (height + 1) integral image
+  int box_x0_ = 0, box_y0_ = 0, box_x1_ = -1, box_y1_ = -1;  // the seed pixels' box (empty: x1 < x0)
+  std::vector<std::int32_t> sum_;  // (box width + 1) x (box height + 1) integral image
 };
 
 }  // namespace suite::carving
