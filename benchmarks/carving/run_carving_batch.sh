@@ -72,7 +72,8 @@ for ((r = 1; r <= repeats; r++)); do
     # Medians of the per-seed wall time the measuring ranks wrote (results.csv column wall_s) and
     # of its share spent on cameras, carve and mesh (seed.json), the rest being reading and
     # segmenting 36 PNGs and writing the overlays and the PLY mesh.
-    seed_s=$(awk -F, '!/^#/ && $1 != "id" {print $12}' "$out/results.csv" | median)
+    seed_s=$(awk -F, '/^#/ {next} $1 == "id" {for (i = 1; i <= NF; i++) if ($i == "wall_s") c = i; next} {print $c}' \
+      "$out/results.csv" | median)
     carve_s=$(cat "$out"/seeds/*/seed.json | sed -n 's/.*"views_carve_and_mesh_s": *\([0-9.e+-]*\).*/\1/p' | median)
     awk -v n="$ranks" -v w="$workers" -v o="$options" -v r="$r" -v s="$rows" -v ok="$ok" -v a="$start" -v b="$end" \
       -v m="$seed_s" -v c="$carve_s" \
