@@ -163,8 +163,10 @@ HullMeasurement measure_hull(const std::vector<View>& views, const std::vector<M
     throw InputError(
         fmt::format("no voxel of the {:.3g} mm search cube survives carving with {} views: the "
                     "silhouettes and the camera calibration do not agree (check the camera "
-                    "distance, the angles and where the calibrated image sits in the photographs)",
-                    side, views.size()));
+                    "distance, the angles and where the calibrated image sits in the photographs), "
+                    "or the search voxels ({:.3g} mm) may be thicker than the seed (give a finer "
+                    "carving.search_resolution or a smaller carving.search_side)",
+                    side, views.size(), search.voxel.x()));
   for (int a = 0; a < 3; ++a)
     if (coarse.first[a] == 0 || coarse.last[a] == search.n[a] - 1)
       throw InputError(
