@@ -119,6 +119,8 @@ Segmentation segment(const cv::Mat& input, const SegmentationOptions& options) {
                              options.min_area, options.max_area, contours.size(), largest_area, selection);
   } else {
     out.found = true;
+    for (int i = 0; i < static_cast<int>(contours.size()); ++i)
+      if (i != chosen) out.other_area = std::max(out.other_area, cv::contourArea(contours[i]));
     out.contour = contours[chosen];
     out.area = chosen_area;
     out.bounding_box = cv::boundingRect(out.contour);

@@ -45,6 +45,7 @@ struct Segmentation {
   std::vector<cv::Point> contour;  // its boundary pixels, in order
   double area = 0;                 // cv::contourArea of the contour (what the range tests), px
   cv::Rect bounding_box;           // axis-aligned box of the contour, px
+  double other_area = 0;           // the largest other contour's area (a piece or another object), px
   double threshold = -1;           // Otsu's threshold when automatic, else -1
 };
 

@@ -25,6 +25,10 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+// A second contour of at least this part of the seed's area in a view flags the seed
+// `fragmented`: a broken seed, or another object, whose pieces the measurement leaves out.
+constexpr double kFragmentShare = 0.1;
+
 // The part of every view's silhouette the hull's image must cover; below it the views
 // count as disagreeing with the calibration (measure/silhouette_agreement.hpp); the coverage that
 // consistent and inconsistent view sets reach is measured in docs/carving.md, "Quality checks".
@@ -208,7 +212,15 @@ SeedRow measure_seed(const SeedEntry& seed, const SeedProfile& profile, const st
           fmt::format("the frame cuts the seed off in view{} {}: photograph it whole (a larger field "
                       "of view, or the seed further from the edges)",
                       cut.size() > 1 ? "s" : "", fmt::join(cut, ", ")));
-    if (record.contains("frame_contact")) row.quality = "touches_frame";
+    std::vector<std::string> flags;
+    if (record.contains("frame_contact")) flags.emplace_back("touches_frame");
+    for (std::size_t i = 0; i < segmented.size(); ++i) {
+      const Segmentation& s = segmented[i].segmentation;
+      if (s.other_area < kFragmentShare * s.area) continue;
+      record["fragments"].push_back({{"view", i + 1}, {"seed_px", s.area}, {"other_px", s.other_area}});
+    }
+    if (record.contains("fragments")) flags.emplace_back("fragmented");
+    row.quality = fmt::format("{}", fmt::join(flags, ";"));
     if (row.method == "carving") {
       measure_by_carving(segmented, profile, dir, row, record);
     } else {
