@@ -25,6 +25,7 @@ struct State {
   std::map<std::string, std::set<std::string>> requested;  // section path -> keys asked for
   std::set<std::string> free_form;                         // subtrees passed on unchecked
   std::map<std::string, std::string> overridden;           // key path -> "key=value" argument
+  std::string override_origin = "command-line override";   // what messages call an override
   std::map<std::string, std::string> resolved;             // key path -> value as the program read it
 };
 
@@ -47,7 +48,7 @@ std::string location(const State& s, const std::string& path, const YAML::Mark& 
   // The key itself or a section above it may come from an override ("output={every: 5}").
   for (std::string p = path; !p.empty();) {
     if (auto it = s.overridden.find(p); it != s.overridden.end())
-      return fmt::format("command-line override '{}'", it->second);
+      return fmt::format("{} '{}'", s.override_origin, it->second);
     const auto cut = p.find_last_of(".[");
     p = cut == std::string::npos ? "" : p.substr(0, cut);
   }
@@ -138,7 +139,7 @@ void apply_override(State& s, const std::string& arg) {
   const std::string key_path = trim(std::string_view(arg).substr(0, eq));
   const std::string value = eq == std::string::npos ? "" : trim(std::string_view(arg).substr(eq + 1));
   auto bad = [&](const std::string& why) {
-    return InputError(fmt::format("command-line override '{}': {}; write it as key.path=value", arg, why));
+    return InputError(fmt::format("{} '{}': {}; write it as key.path=value", s.override_origin, arg, why));
   };
   if (eq == std::string::npos || key_path.empty()) throw bad("it has no '='");
   if (value.empty()) throw bad("it has no value after '='");
@@ -193,9 +194,10 @@ void apply_override(State& s, const std::string& arg) {
 }
 
 std::shared_ptr<State> load(const std::string& text, const std::string& source,
-                            const std::vector<std::string>& overrides) {
+                            const std::vector<std::string>& overrides, const std::string& override_origin) {
   auto s = std::make_shared<State>();
   s->source = source;
+  s->override_origin = override_origin;
   try {
     s->root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
@@ -607,11 +609,12 @@ YAML::Node Section::raw(const std::string& key) const {
 // --------------------------------------------------------------------------------------- Config
 
 Config Config::from_string(const std::string& text, const std::string& source_name,
-                           const std::vector<std::string>& overrides) {
-  return Config(load(text, source_name, overrides));
+                           const std::vector<std::string>& overrides, const std::string& override_origin) {
+  return Config(load(text, source_name, overrides, override_origin));
 }
 
-Config Config::from_file(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+Config Config::from_file(const std::filesystem::path& path, const std::vector<std::string>& overrides,
+                         const std::string& override_origin) {
   std::ifstream in(path);
   if (!in) {
     std::error_code ec;
@@ -621,7 +624,7 @@ Config Config::from_file(const std::filesystem::path& path, const std::vector<st
   }
   std::stringstream text;
   text << in.rdbuf();
-  auto state = load(text.str(), path.string(), overrides);
+  auto state = load(text.str(), path.string(), overrides, override_origin);
   state->base_dir = path.parent_path();
   return Config(std::move(state));
 }

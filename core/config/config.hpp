@@ -120,10 +120,13 @@ class Section {
 class Config {
  public:
   // `overrides` are "key.path=value" strings from the command line; value is YAML ("5", "[1, 2]",
-  // "2.5 m"). Throws InputError naming the file (and line) or the override.
-  static Config from_file(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
+  // "2.5 m"). Throws InputError naming the file (and line) or the override, which messages call
+  // `override_origin` (a study's values: "model.set").
+  static Config from_file(const std::filesystem::path& path, const std::vector<std::string>& overrides = {},
+                          const std::string& override_origin = "command-line override");
   static Config from_string(const std::string& text, const std::string& source_name,
-                            const std::vector<std::string>& overrides = {});
+                            const std::vector<std::string>& overrides = {},
+                            const std::string& override_origin = "command-line override");
 
   Section root() const;
   // Throws InputError for the first key in the file that the program never asked for, with

@@ -62,7 +62,7 @@ breach::Scene BreachModel::scene_with(const std::map<std::string, double>& value
   if (auto scene = variants_ ? variants_->with(settings) : std::nullopt) return *scene;
   std::vector<std::string> overrides;
   for (const auto& [key, value] : settings) overrides.push_back(key + "=" + value);
-  return breach::Scene::read_complete(config::Config::from_file(scene_, overrides));
+  return breach::Scene::read_complete(config::Config::from_file(scene_, overrides, "model.set"));
 }
 
 Outcome BreachModel::evaluate(long, const std::map<std::string, double>& values) const {
