@@ -33,15 +33,21 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
 }
 
 template <int Dim>
-StepLimit Simulation<Dim>::stable_dt() const {
-  double vmax2 = 0;  // the largest |v|^2: one square root, not one per particle (the same max)
-  for (const auto* P : {&water_, &soil_})
-    for (const auto& v : P->v) vmax2 = std::max(vmax2, v.squaredNorm());
-  // One reduction: the fastest particle and whether each species has particles on some rank.
-  std::array<double, 3> most{std::sqrt(vmax2), water_.size() > 0 ? 1.0 : 0.0, soil_.size() > 0 ? 1.0 : 0.0};
-  max_over_ranks(most);
-  const double vmax = most[0];
-  const bool water = most[1] > 0, soil = most[2] > 0;
+StepLimit Simulation<Dim>::stable_dt(const std::optional<ParticleExtremes>& known) const {
+  ParticleExtremes e;
+  if (known) {
+    e = *known;
+  } else {
+    double vmax2 = 0;  // the largest |v|^2: one square root, not one per particle (the same max)
+    for (const auto* P : {&water_, &soil_})
+      for (const auto& v : P->v) vmax2 = std::max(vmax2, v.squaredNorm());
+    // One reduction: the fastest particle and whether each species has particles on some rank.
+    std::array<double, 3> most{std::sqrt(vmax2), water_.size() > 0 ? 1.0 : 0.0, soil_.size() > 0 ? 1.0 : 0.0};
+    max_over_ranks(most);
+    e = {most[0], most[1] > 0, most[2] > 0};
+  }
+  const double vmax = e.fastest;
+  const bool water = e.water, soil = e.soil;
   const double h = grid_.spacing();
   StepLimit best{s_.dt_max, "dt_max"};
   auto consider = [&](double dt, const char* why) {

@@ -73,6 +73,13 @@ struct StepLimit {
   std::string limiter;  // "cfl (velocity)", "water wave speed", "soil elastic wave speed", "dt_max"
 };
 
+// What the stable time step needs of the particles, over all ranks: the fastest one's speed and
+// which species have particles.
+struct ParticleExtremes {
+  double fastest = 0;  // m/s
+  bool water = false, soil = false;
+};
+
 // Sums over the particles of a species or the outflow record.
 template <int Dim>
 struct Outflow {
@@ -113,8 +120,10 @@ class Simulation {
   const StepTimes& step_times() const { return times_; }
 
   // The largest stable dt now: cfl h / max |v_p|, cfl h / c for the water's and the soil's wave
-  // speeds, and dt_max. Drag never limits it (implicit). COLLECTIVE.
-  StepLimit stable_dt() const;
+  // speeds, and dt_max. Drag never limits it (implicit). `known`: the extremes of the particles
+  // as they are now, already reduced over the ranks (a run's blow-up check has them), which saves
+  // the scan and its reduction; without them COLLECTIVE.
+  StepLimit stable_dt(const std::optional<ParticleExtremes>& known = std::nullopt) const;
 
   // Advances by dt. COLLECTIVE.
   void step(double dt);

@@ -6,6 +6,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <utility>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -185,7 +186,8 @@ class MpmRun {
   // samples and outputs due.
   void advance() {
     std::optional<ScopedPhase> checks(std::in_place, timers_, "dt limit");
-    const StepLimit limit = sim_.stable_dt();
+    // The last blow-up check scanned the particles as they are now: its extremes save a scan.
+    const StepLimit limit = sim_.stable_dt(std::exchange(extremes_, std::nullopt));
     checks.reset();
     ++p_.limiters[limit.limiter];
     const double to_event = std::min({p_.next_sample, p_.next_output, scene_.time.end}) - sim_.time();
@@ -209,16 +211,19 @@ class MpmRun {
     const double speed_limit = BlowUpCheck::speed_limit(scene_.simulation, inlet_velocity);
     // The worst particle of any rank, in one reduction: every rank stops with the same message.
     const std::array<const Particles<Dim>*, 2> species_list{&sim_.water(), &sim_.soil()};
-    std::array<double, 4> worst{};  // per species: 1 when some position or velocity is not finite, the top speed
+    // Per species: 1 when some position or velocity is not finite, the top speed, 1 when it has
+    // particles.
+    std::array<double, 6> worst{};
     for (std::size_t k = 0; k < 2; ++k) {
       const auto local = ParticleScan<Dim>::of(*species_list[k]);
-      worst[2 * k] = local.finite ? 0.0 : 1.0;
-      worst[2 * k + 1] = local.finite ? local.speed : 0.0;
+      worst[3 * k] = local.finite ? 0.0 : 1.0;
+      worst[3 * k + 1] = local.finite ? local.speed : 0.0;
+      worst[3 * k + 2] = species_list[k]->size() > 0 ? 1.0 : 0.0;
     }
     sim_.max_over_ranks(worst);
     for (std::size_t k = 0; k < 2; ++k) {
-      const bool finite = worst[2 * k] == 0;
-      const double speed = worst[2 * k + 1];
+      const bool finite = worst[3 * k] == 0;
+      const double speed = worst[3 * k + 1];
       const char* species = k == 0 ? "water" : "soil";
       const auto where = fmt::format("the run blew up at step {} (t = {:.6g} s, dt = {:.4g} s limited by {})",
                                      sim_.steps(), sim_.time(), dt, limit.limiter);
@@ -235,6 +240,7 @@ class MpmRun {
                                      where, species, speed, BlowUpCheck::kFactor,
                                      speed_limit / BlowUpCheck::kFactor, fix));
     }
+    extremes_ = ParticleExtremes{std::max(worst[1], worst[4]), worst[2] > 0, worst[5] > 0};
     checks.reset();
     const double end = scene_.time.end * (1 - 1e-12);
     if (sim_.time() >= p_.next_sample * (1 - 1e-12)) {
@@ -463,6 +469,7 @@ class MpmRun {
   std::filesystem::path out_, checkpoints_;
   double half_spacing_ = 0, last_dt_ = 0;
   DecompositionStats traffic_before_;  // the decomposition's counts when the steps began
+  std::optional<ParticleExtremes> extremes_;  // the last blow-up check's, while the particles stay as it saw them
   long long drag_iterations_ = 0;  // most KSP iterations of one consistent drag solve in this run
   long long first_step_ = 0;            // the step this run (or its restart) began at
   long long last_checkpoint_step_ = -1;  // the step of the newest checkpoint of this run
