@@ -8,8 +8,14 @@ profiles.csv and summary.json:
   - the outflow discharge column integrates to the outflow mass (the discharge is the mass booked
     over each interval), and summary.json's peak and time to peak are its largest entry;
   - the dam was overtopped: water left through the outlet, and the eroded soil volume is positive;
-  - the crest profile exists at every output time and its highest point is the crest height.
-    check_dam_run.py RUN_DIR Q_PER_METRE LAYER_MASS
+  - the crest profile exists at every output time and its highest point is the crest height;
+  - given the scene file (a trapezoid dam), the dam stands as built until the water reaches it:
+    the seeded crest lies within half a particle spacing of the drawing's height (the lattice's
+    rows), and the crest height stays within 1% of the dam's height of the seeded one at every
+    row before the water front first comes within a cell of the crest's upstream edge (into the
+    profile's column whose surface is the crest). The measure moves in steps of a quarter cell,
+    one particle's share of a cell's fill, so 1% at the demo resolution means no change at all.
+    check_dam_run.py RUN_DIR Q_PER_METRE LAYER_MASS [SCENE]
 """
 import csv
 import json
@@ -42,7 +48,7 @@ def main():
     worst_w = worst_s = 0.0
     for i in range(len(s["time"])):
         total = w0 + s["inflow_water_mass"][i]
-        worst_w = max(worst_w, abs(s["water_mass"][i] + s["outflow_water_mass"][i] - total) / total)
+        worst_w = max(worst_w, abs(s["water_mass"][i] + s["outflow_water_mass"][i] - total) / max(total, 1.0))
         worst_s = max(worst_s, abs(s["soil_mass"][i] + s["outflow_soil_mass"][i] - s0) / s0)
     check(worst_w < ROUND, f"water mass balance closes: worst relative error {worst_w:.2e} < {ROUND}")
     check(worst_s < ROUND, f"soil mass balance closes: worst relative error {worst_s:.2e} < {ROUND}")
@@ -77,6 +83,24 @@ def main():
     last = max(profiles)
     check(abs(max(profiles[last]) - summary["final_crest_height"]) < 1e-9,
           f"{len(profiles)} crest profiles; the last one's top {max(profiles[last]):.4g} m is the final crest height")
+
+    if len(sys.argv) > 4:
+        import yaml  # Debian's python3-yaml, only for this check
+        scene = yaml.safe_load(Path(sys.argv[4]).read_text())
+        h = float(str(scene["grid"]["spacing"]).split()[0])
+        spacing = h / float(scene["grid"]["particles_per_cell"])
+        dam = scene["soil"]["regions"][0]["trapezoid"]
+        height, edge = float(dam["height"]), float(dam["toe"]) + float(dam["height"]) / float(dam["upstream_slope"])
+        seeded = s["crest_height"][0]
+        check(abs(seeded - height) <= spacing / 2, f"the seeded crest {seeded:.4g} m lies within half a particle "
+              f"spacing ({spacing / 2:.4g} m) of the drawing's {height:.4g} m")
+        reach = next((i for i, x in enumerate(s["water_front"]) if x > edge - h), len(s["time"]))
+        before = [abs(c - seeded) for c in s["crest_height"][:reach]]
+        when = f"{s['time'][reach]:.4g} s" if reach < len(s["time"]) else "never"
+        check(reach > 1 and max(before) <= 0.01 * height,
+              f"the dam stands until the water comes within a cell of its crest (x = {edge - h:.4g} m, at {when}): "
+              f"crest within {max(before):.4g} m of the seeded {seeded:.4g} m over {reach} rows (1% of the height: "
+              f"{0.01 * height:.4g} m)")
     return 1 if failures else 0
 
 

@@ -26,12 +26,12 @@ refused() {  # refused KEY OVERRIDE...: a restart with the overrides names KEY a
 refused soil.young "soil.young=20 MPa"
 refused soil.poisson "soil.poisson=0.25"
 refused soil.friction_angle "soil.friction_angle=30 deg"
-refused soil.cohesion_shift "soil.cohesion_shift=0.004"
+refused soil.cohesion "soil.cohesion=2468 Pa"
 refused "soil.regions[0].trapezoid.height" "soil.regions.0.trapezoid.height=3 m"
 refused walls.y_low "walls.y_low=sticky"
 refused wall_friction "wall_friction=0.5"
 refused grid.spacing "grid.spacing=0.25 m"
-"$expect" "was written for another scene|soil.cohesion_shift|'0.008' there, '0.002' here" \
+"$expect" "was written for another scene|soil.cohesion|'4935 Pa' there, '1234 Pa' here" \
   "$exe" "$scenes/table_3_4_example5.yaml" "grid.spacing=0.5 m" time.output=0.5s time.series=0.05s time.end=1s \
   --out "$work/extended" --restart latest
 "$expect" "time.end|give a later time.end" "$exe" "${scene[@]}" time.end=1s --out "$work/extended" --restart latest

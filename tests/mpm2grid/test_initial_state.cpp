@@ -129,8 +129,8 @@ Motion run(Simulation<2>& sim, double seconds) {
 }
 
 // The dry 05-HR-a embankment (3.3 m high, slopes 0.3882 and 0.3143 V/H, Table 3.4's geometry)
-// of a compacted soil (E = 20 MPa) on its friction floor: started geostatic it stands as built,
-// where started stress-free it drops and rings.
+// of the scenes' compacted soil (E = 24 MPa, c0 = 4935 Pa) on its friction floor: started
+// geostatic it stands as built, where started stress-free it drops and rings.
 std::string dry_dam(bool geostatic) {
   return fmt::format(R"(
 dimension: 2
@@ -139,7 +139,7 @@ domain: {{lo: [0, 0], hi: [35, 10]}}
 walls: {{x_low: slip, x_high: open, y_low: friction, y_high: slip}}
 wall_friction: 0.7
 gravity: 9.8 m/s^2
-soil: {{density: 2200 kg/m^3, young: 20 MPa, poisson: 0.3, friction_angle: 35 deg, cohesion_shift: 0.008,
+soil: {{density: 2200 kg/m^3, young: 24 MPa, poisson: 0.3, friction_angle: 35 deg, cohesion: 4935 Pa,
         regions: [{{trapezoid: {{toe: 4.75, height: 3.3, crest_width: 1.0, upstream_slope: 0.3882,
                                  downstream_slope: 0.3143}}}}]}}
 initial_state: {{geostatic: {}}}

@@ -86,6 +86,6 @@ TEST(Templatize, ShippedMpm2gridTemplateRendersToItsScene) {
   };
   const auto scene = read(src / "solvers/mpm2grid/scenes/table_3_4_example2.yaml");
   const auto tmpl = Template::parse(read(src / "studies/examples/mpm2grid/table_3_4_example2.tmpl"), "table_3_4_example2.tmpl");
-  EXPECT_EQ(tmpl.names(), (std::vector<std::string>{"cC", "level"}));
-  EXPECT_EQ(tmpl.render({{"cC", 0.008}, {"level", 3.25}}), scene);
+  EXPECT_EQ(tmpl.names(), (std::vector<std::string>{"c0", "level"}));
+  EXPECT_EQ(tmpl.render({{"c0", 4935}, {"level", 3.25}}), scene);
 }
