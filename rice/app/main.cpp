@@ -1,0 +1,131 @@
+// riceasv: rice alkali spreading value from photographs (docs/rice.md, issue 32). `render` draws
+// synthetic dishes of grains in alkali with their ground truth; `measure` segments each grain and
+// its gel and writes the traits a classifier of the grade needs.
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/cli/subcommands.hpp"
+#include "core/errors.hpp"
+#include "core/log/logger.hpp"
+#include "core/mpi/comm.hpp"
+#include "core/mpi/environment.hpp"
+#include "core/run/guarded_main.hpp"
+#include "rice/measure/measure_images.hpp"
+#include "rice/render/render_set.hpp"
+
+namespace {
+
+using suite::cli::CommandSpec;
+using Option = suite::cli::OptionSpec;
+
+suite::cli::ProgramSpec program_spec() {
+  return {"riceasv",
+          "riceasv: rice alkali spreading value (grades 2-7, Little et al. 1958) from photographs (docs/rice.md)",
+          {
+              CommandSpec{"render",
+                          "synthetic photographs of milled grains in alkali on a black dish, grades 2-7, with ground "
+                          "truth: DIR/asv<grade>_<k>.png, DIR/truth.csv (areas in mm^2, collar completeness, kernel "
+                          "pieces per grain) and DIR/render.json",
+                          "",
+                          0,
+                          0,
+                          false,
+                          {Option::text("out", "DIR", "output folder (created)", true),
+                           Option::text("grades", "G,G,...", "grades to draw, from 2 to 7 (default 2,3,4,5,6,7)"),
+                           Option::count("per-grade", "N", "grains of each grade (default 6)", 1),
+                           Option::count("per-image", "K", "grains per photograph (default 6)", 1),
+                           Option::count("seed", "S", "seed of the random draws (default 1)", 0),
+                           Option::number("pixel-size", "MM", "size of a pixel on the dish (default 0.02)"),
+                           Option::number("noise", "SIGMA", "sensor noise, grey levels (default 4)"),
+                           Option::count("touching-pairs", "P",
+                                         "per photograph, P cells with two grains touching (grades 2-5; default 0)", 0),
+                           Option::flag("frame-cut", "move each photograph's last grain across its right edge")}},
+              CommandSpec{"measure",
+                          "segment every grain and its gel in each photograph (or folder of them) and write "
+                          "DIR/results.csv: one row per grain (kernel area, pieces, solidity, gel area and ratio, "
+                          "collar completeness, kernel share), and a failed row for an image that cannot be read",
+                          "IMAGES...",
+                          1,
+                          -1,
+                          false,
+                          {Option::text("out", "DIR", "output folder (created)", true),
+                           Option::number("pixel-size", "MM",
+                                          "size of a pixel on the dish, from a ruler or a "
+                                          "calibration target (required)"),
+                           Option::flag("overlays", "also write DIR/overlays/<image>.png with the outlines")}},
+          }};
+}
+
+int render(const suite::cli::CommandArguments& c, suite::Logger& log) {
+  suite::rice::RenderSetOptions o;
+  if (c.has("grades")) o.grades = suite::rice::parse_grades(c.text_or("grades", ""));
+  o.per_grade = static_cast<int>(c.count_or("per-grade", o.per_grade));
+  o.per_image = static_cast<int>(c.count_or("per-image", o.per_image));
+  o.seed = static_cast<std::uint64_t>(c.count_or("seed", 1));
+  o.dish.mm_per_px = c.number("pixel-size").value_or(o.dish.mm_per_px);
+  o.dish.noise_sigma = c.number("noise").value_or(o.dish.noise_sigma);
+  o.dish.touching_pairs = static_cast<int>(c.count_or("touching-pairs", 0));
+  o.dish.frame_cut = c.has("frame-cut");
+  const std::filesystem::path out = c.text_or("out", "");
+  const auto set = suite::rice::render_set(o, out);
+  log.info("{} photographs, {} grains (grades {}), truth in {}", set.images.size(), set.truth.size(),
+           fmt::join(o.grades, ","), (out / "truth.csv").string());
+  return 0;
+}
+
+int measure(const suite::cli::CommandArguments& c, suite::Logger& log) {
+  const auto pixel = c.number("pixel-size");
+  if (!pixel)
+    throw suite::InputError(
+        "riceasv measure: --pixel-size MM is required (the size of one pixel on the dish in mm, e.g. 0.02; "
+        "photograph a ruler at the same height to find it)");
+  suite::rice::MeasureOptions o;
+  o.mm_per_px = *pixel;
+  if (!(o.mm_per_px > 0) || o.mm_per_px > 1)
+    throw suite::InputError(fmt::format("--pixel-size {}: give the size of one pixel in mm, in (0, 1]", o.mm_per_px));
+  std::vector<std::filesystem::path> targets(c.targets.begin(), c.targets.end());
+  const std::filesystem::path out = c.text_or("out", "");
+  const auto rows = suite::rice::measure_images(targets, o, out, c.has("overlays"), log);
+  int grains = 0, flagged = 0, failed = 0;
+  const suite::rice::ResultRow* first_failed = nullptr;
+  for (const auto& r : rows) {
+    if (r.status == "failed") {
+      ++failed;
+      if (!first_failed) first_failed = &r;
+    } else {
+      ++grains;
+      flagged += r.status == "flagged";
+    }
+  }
+  log.info("{} grains ({} flagged) from {} images; table {}", grains, flagged, rows.empty() ? 0 : rows.size(),
+           (out / "results.csv").string());
+  if (failed > 0)
+    throw suite::InputError(fmt::format("{} image(s) could not be measured, the others were (table {}); first: {}",
+                                        failed, (out / "results.csv").string(), first_failed->message));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  suite::mpi::Environment env(argc, argv);
+  const suite::mpi::Comm world(MPI_COMM_WORLD);
+  return suite::guarded_main(world, [&] {
+    const auto parsed = suite::cli::parse_command(program_spec(), argc, argv);
+    if (!parsed.arguments) {
+      if (world.is_root()) std::fputs((parsed.message + "\n").c_str(), parsed.exit_code ? stderr : stdout);
+      return parsed.exit_code;
+    }
+    const auto& c = *parsed.arguments;
+    if (world.size() > 1)
+      throw suite::InputError(fmt::format("riceasv runs on one process, not {}; run it without mpiexec", world.size()));
+    suite::Logger log(world, "riceasv", {suite::parse_log_level(c.log_level), false, nullptr});
+    if (c.command == "render") return render(c, log);
+    if (c.command == "measure") return measure(c, log);
+    throw std::logic_error("riceasv: command '" + c.command + "' has no handler");
+  });
+}

@@ -1,0 +1,48 @@
+#pragma once
+// A set of synthetic dish photographs with their ground truth, for testing the measurement and
+// training classifiers (docs/rice.md): for each grade, `per_grade` grains drawn `per_image` to a
+// photograph, written as OUT/asv<grade>_<k>.png, OUT/truth.csv (one row per grain) and
+// OUT/render.json (the options and the seed). Each photograph's random draws come from
+// (seed, grade, k) alone, so a photograph is the same whatever other grades the set holds.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rice/render/dish_renderer.hpp"
+
+namespace suite::rice {
+
+struct RenderSetOptions {
+  std::vector<int> grades{2, 3, 4, 5, 6, 7};
+  int per_grade = 6;  // grains of each grade
+  int per_image = 6;  // grains per photograph (a dish)
+  std::uint64_t seed = 1;
+  DishOptions dish;
+};
+
+struct TruthRow {
+  std::string image;  // file name, e.g. asv5_01.png
+  RenderedGrain grain;
+};
+
+struct RenderedSet {
+  std::vector<std::filesystem::path> images;
+  std::vector<TruthRow> truth;
+};
+
+// Renders the set into `out` (created). InputError for options out of range, naming the option,
+// or a folder that cannot be written.
+RenderedSet render_set(const RenderSetOptions& options, const std::filesystem::path& out);
+
+// The image's random draws: a function of (seed, grade, k) only.
+std::uint64_t image_seed(std::uint64_t seed, int grade, int k);
+
+// truth.csv: the columns of truth_columns(), a '#' line with the units first.
+const std::vector<std::string>& truth_columns();
+void write_truth(const std::filesystem::path& file, const std::vector<TruthRow>& rows, double mm_per_px);
+
+// "2,3,4" -> {2, 3, 4}; InputError naming `text` unless every item is a grade 2..7 given once.
+std::vector<int> parse_grades(const std::string& text);
+
+}  // namespace suite::rice
