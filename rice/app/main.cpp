@@ -1,6 +1,7 @@
 // riceasv: rice alkali spreading value from photographs (docs/rice.md, issue 32). `render` draws
 // synthetic dishes of grains in alkali with their ground truth; `measure` segments each grain and
-// its gel and writes the traits a classifier of the grade needs.
+// its gel and writes the traits a classifier of the grade needs; `train` fits and judges such a
+// classifier on labelled photographs; `classify` predicts the class of every grain with it.
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -14,6 +15,8 @@
 #include "core/mpi/comm.hpp"
 #include "core/mpi/environment.hpp"
 #include "core/run/guarded_main.hpp"
+#include "rice/classify/classify_images.hpp"
+#include "rice/classify/train_classifier.hpp"
 #include "rice/measure/measure_images.hpp"
 #include "rice/render/render_set.hpp"
 
@@ -57,6 +60,37 @@ suite::cli::ProgramSpec program_spec() {
                                           "size of a pixel on the dish, from a ruler or a "
                                           "calibration target (required)"),
                            Option::flag("overlays", "also write DIR/overlays/<image>.png with the outlines")}},
+              CommandSpec{"train",
+                          "measure labelled photographs (LABELS: a folder of grade folders grade_2/ ... grade_7/ or "
+                          "2/ ... 7/, or a CSV with columns image,grade), train a classifier of the ASV class on the "
+                          "ok grains' traits, judge it on a seeded train/validation/test split and by k-fold "
+                          "cross-validation, and save it: DIR/model.yml + model.json, evaluation.json, "
+                          "confusion_test.csv, confusion_cv.csv, confusion.png, samples.csv, measured/",
+                          "LABELS",
+                          1,
+                          1,
+                          false,
+                          {Option::text("out", "MODEL_DIR", "output folder for the model and its evaluation", true),
+                           Option::number("pixel-size", "MM", "size of a pixel on the dish (required)"),
+                           Option::text("classes", "three|grades",
+                                        "three: low (2-3), medium (4-5), high (6-7), the default; grades: 2 ... 7"),
+                           Option::text("model-type", "rtrees|svm", "random forest (default) or RBF SVM"),
+                           Option::count("trees", "N", "trees of the forest (default 100)", 1),
+                           Option::count("folds", "K", "k-fold cross-validation (default 5; 0: none)", 0),
+                           Option::number("validation-share", "F", "share of each class for validation (0.125)"),
+                           Option::number("test-share", "F", "share of each class held out for the test (0.125)"),
+                           Option::count("seed", "S", "seed of the split, the folds and the forest (default 1)", 0)}},
+              CommandSpec{"classify",
+                          "measure photographs (files or folders) and predict each grain's ASV class with a model "
+                          "from `riceasv train`: DIR/classes.csv (class and vote share per grain), DIR/classify.json "
+                          "(counts per class and per image), DIR/results.csv (the traits)",
+                          "IMAGES...",
+                          1,
+                          -1,
+                          false,
+                          {Option::text("out", "DIR", "output folder (created)", true),
+                           Option::text("model", "MODEL_DIR", "the folder `riceasv train --out` wrote", true),
+                           Option::number("pixel-size", "MM", "size of a pixel on the dish (required)")}},
           }};
 }
 
@@ -77,16 +111,23 @@ int render(const suite::cli::CommandArguments& c, suite::Logger& log) {
   return 0;
 }
 
-int measure(const suite::cli::CommandArguments& c, suite::Logger& log) {
+// The measurement options from --pixel-size, which every command that measures requires.
+suite::rice::MeasureOptions measure_options(const suite::cli::CommandArguments& c) {
   const auto pixel = c.number("pixel-size");
   if (!pixel)
     throw suite::InputError(
-        "riceasv measure: --pixel-size MM is required (the size of one pixel on the dish in mm, e.g. 0.02; "
-        "photograph a ruler at the same height to find it)");
+        fmt::format("riceasv {}: --pixel-size MM is required (the size of one pixel on the dish in mm, e.g. 0.02; "
+                    "photograph a ruler at the same height to find it)",
+                    c.command));
   suite::rice::MeasureOptions o;
   o.mm_per_px = *pixel;
   if (!(o.mm_per_px > 0) || o.mm_per_px > 1)
     throw suite::InputError(fmt::format("--pixel-size {}: give the size of one pixel in mm, in (0, 1]", o.mm_per_px));
+  return o;
+}
+
+int measure(const suite::cli::CommandArguments& c, suite::Logger& log) {
+  const suite::rice::MeasureOptions o = measure_options(c);
   std::vector<std::filesystem::path> targets(c.targets.begin(), c.targets.end());
   const std::filesystem::path out = c.text_or("out", "");
   const auto rows = suite::rice::measure_images(targets, o, out, c.has("overlays"), log);
@@ -109,6 +150,39 @@ int measure(const suite::cli::CommandArguments& c, suite::Logger& log) {
   return 0;
 }
 
+int train(const suite::cli::CommandArguments& c, suite::Logger& log) {
+  const suite::rice::MeasureOptions m = measure_options(c);
+  suite::rice::TrainOptions o;
+  o.classes = suite::rice::AsvClasses::parse(c.text_or("classes", "three"));
+  o.model.kind = suite::rice::parse_model_kind(c.text_or("model-type", "rtrees"));
+  o.model.trees = static_cast<int>(c.count_or("trees", o.model.trees));
+  o.folds = static_cast<int>(c.count_or("folds", o.folds));
+  o.validation_share = c.number("validation-share").value_or(o.validation_share);
+  o.test_share = c.number("test-share").value_or(o.test_share);
+  o.seed = static_cast<std::uint64_t>(c.count_or("seed", 1));
+  const std::filesystem::path out = c.text_or("out", "");
+  const auto s = suite::rice::train_classifier(c.targets.at(0), o, m, out, log);
+  if (!s.problems.empty())
+    throw suite::InputError(
+        fmt::format("{} labelled image(s) or folder(s) could not be used, the model was trained "
+                    "on the others ({}); first: {}",
+                    s.problems.size(), (out / "evaluation.json").string(), s.problems.front()));
+  return 0;
+}
+
+int classify(const suite::cli::CommandArguments& c, suite::Logger& log) {
+  const suite::rice::MeasureOptions m = measure_options(c);
+  std::vector<std::filesystem::path> targets(c.targets.begin(), c.targets.end());
+  const std::filesystem::path out = c.text_or("out", "");
+  const auto s = suite::rice::classify_images(targets, c.text_or("model", ""), m, out, log);
+  log.info("{} grains classified ({} flagged) from {} images; table {}", s.grains, s.flagged, s.images,
+           (out / "classes.csv").string());
+  if (s.failed_images > 0)
+    throw suite::InputError(fmt::format("{} image(s) could not be classified, the others were (table {}); first: {}",
+                                        s.failed_images, (out / "classes.csv").string(), s.first_failure));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -126,6 +200,8 @@ int main(int argc, char** argv) {
     suite::Logger log(world, "riceasv", {suite::parse_log_level(c.log_level), false, nullptr});
     if (c.command == "render") return render(c, log);
     if (c.command == "measure") return measure(c, log);
+    if (c.command == "train") return train(c, log);
+    if (c.command == "classify") return classify(c, log);
     throw std::logic_error("riceasv: command '" + c.command + "' has no handler");
   });
 }
