@@ -2,19 +2,19 @@
 # Every mpm2grid benchmark in turn, then benchmarks/results/mpm2grid/README.md from their tables.
 # Run on an idle machine (the timings are medians of interleaved repeats, but 2 ranks on 2 cores
 # take every core).
-#   benchmarks/mpm2grid/run_all.sh [MPM2GRID]      (about 35 min on 2 idle cores)
+#   benchmarks/mpm2grid/run_all.sh [MPM2GRID]      (about 45 min on 2 idle cores)
 #   env: ONLY ("particle_step table_3_4_scaling message_counts martin_moyce dam_convergence drag_stability
-#        soil_stiffness": a subset),
+#        soil_stiffness granular_collapse": a subset),
 #        and every driver's own variables (REPEATS, STEPS, ...) and common.sh's MPM2GRID MPIEXEC OUT NICE KEEP_RUNS
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 out=${OUT:-$root/benchmarks/results/mpm2grid}
-only=${ONLY:-particle_step table_3_4_scaling message_counts martin_moyce dam_convergence drag_stability soil_stiffness}
+only=${ONLY:-particle_step table_3_4_scaling message_counts martin_moyce dam_convergence drag_stability soil_stiffness granular_collapse}
 declare -A driver=([particle_step]=run_particle_step.sh [table_3_4_scaling]=run_table_3_4_scaling.sh
   [message_counts]=run_message_counts.sh
   [martin_moyce]=run_martin_moyce.sh [dam_convergence]=run_dam_convergence.sh [drag_stability]=run_drag_stability.sh
-  [soil_stiffness]=run_soil_stiffness.sh)
+  [soil_stiffness]=run_soil_stiffness.sh [granular_collapse]=run_granular_collapse.sh)
 for b in $only; do
   echo "=== $b"
   t0=$(date +%s)
@@ -28,7 +28,7 @@ done
   echo "Written by \`benchmarks/mpm2grid/run_all.sh\` from the tables each driver writes beside its CSV"
   echo "and PNG (\`<name>.md\`, \`<name>.csv\`, \`<name>.png\`); rerun one driver and then this script with"
   echo "ONLY=none to refresh this file. Timings are medians over repeats run in turn."
-  for b in particle_step table_3_4_scaling message_counts martin_moyce dam_convergence drag_stability soil_stiffness; do
+  for b in particle_step table_3_4_scaling message_counts martin_moyce dam_convergence drag_stability soil_stiffness granular_collapse; do
     if [ -f "$out/$b.md" ]; then
       echo
       sed 's/^## /## /' "$out/$b.md"
