@@ -49,7 +49,11 @@ suite::cli::ProgramSpec program_spec() {
           CommandSpec{
               "measure",
               "one seed: IMAGES is a folder of views or the files (carving: every view in turntable order; "
-              "slicing: the top view, then the side view); writes DIR/results.csv and DIR/<id>/",
+              "slicing: the top view, then the side view); writes DIR/results.csv and DIR/<id>/. key.path=value "
+              "overrides a profile key, e.g. carving.resolution=384, or for slicing slicing.slices=N (50) and "
+              "slicing.neighbour_average=true (each column's upper and lower contour points averaged with the two "
+              "columns on each side before the slices' widths are taken, the dissertation's smoothing; off by "
+              "default, docs/carving.md)",
               "IMAGES...",
               1,
               -1,

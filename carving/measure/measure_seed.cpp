@@ -172,6 +172,7 @@ void measure_by_slicing(const std::vector<SegmentedView>& segmented, const SeedP
   write_png(dir / "overlays.png", overlay_montage(segmented, lines, 2, 640));
   record["slicing"] = {{"slices", r.slices.size()},
                        {"scale_correction", r.scale},
+                       {"neighbour_average", profile.slicing.neighbour_average},
                        {"px_per_mm_top", profile.slicing.px_per_mm_top},
                        {"px_per_mm_side", r.px_per_mm_side}};
 }

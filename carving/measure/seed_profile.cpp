@@ -100,6 +100,7 @@ SeedProfile read_seed_profile(const config::Config& cfg) {
     p.slicing.slices = static_cast<int>(s.integer("slices", 50, 1, 100000));
     p.slicing.px_per_mm_top = s.number("px_per_mm", config::Range::positive());
     p.slicing.scale_correction = s.get<bool>("scale_correction", true);
+    p.slicing.neighbour_average = s.get<bool>("neighbour_average", false);
   }
   cfg.finish();
   p.effective_yaml = cfg.effective_yaml();

@@ -25,7 +25,8 @@
 //                                   # other way from the calibration; with `auto` origin also `auto`
 //   carving: {resolution: 256, subvoxel_samples: 0, search_resolution: 48, mesh: true, mesh_resolution: 128,
 //             voxels_h5: false}      # voxels.h5: occupancy fractions on the mesh grid (io/voxel_output.hpp)
-//   slicing: {slices: 50, px_per_mm: 40, scale_correction: true}   # slicing: images are [top, side]
+//   slicing: {slices: 50, px_per_mm: 40, scale_correction: true,    # slicing: images are [top, side]
+//             neighbour_average: false}  # true: each column's contour points averaged over 5 columns
 #include <filesystem>
 #include <optional>
 #include <string>

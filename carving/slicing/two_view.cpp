@@ -40,25 +40,55 @@ Ends ends(const std::vector<long long>& counts, int first, int last) {
   return {tip(counts, first, +1), tip(counts, last, -1)};
 }
 
-// Seed-pixel counts of every column and row, and the box of the seed pixels.
+// Seed-pixel counts of every column and row, the box of the seed pixels, and the chord each
+// slice takes per column (the counts, or the neighbour-averaged contour extents).
 struct Profile {
   std::vector<long long> columns, rows;
+  std::vector<double> chords;
   PixelBox box;
 
-  // Column count at a continuous column position, linear between column centres, 0 outside the image.
+  // Chord at a continuous column position, linear between column centres, 0 outside the image.
   double at(double x) const {
     const double lo = std::floor(x);
     const double f = x - lo;
     const auto value = [&](double c) {
-      return c >= 0 && c < static_cast<double>(columns.size())
-                 ? static_cast<double>(columns[static_cast<std::size_t>(c)])
-                 : 0.0;
+      return c >= 0 && c < static_cast<double>(chords.size()) ? chords[static_cast<std::size_t>(c)] : 0.0;
     };
     return (1 - f) * value(lo) + f * value(lo + 1);
   }
 };
 
-Profile profile(const Mask& mask, const char* which) {
+// The dissertation's smoothing: each column's upper and lower contour points (its first and last
+// seed rows) averaged with those of the two columns on each side that hold seed pixels (fewer at
+// the tips), the chord being the averaged lower minus the averaged upper point, plus one pixel.
+std::vector<double> neighbour_averaged_chords(const Mask& mask, const PixelBox& box) {
+  constexpr int kReach = 2;  // 5 points: the column itself and two on each side
+  const int n = box.width();
+  std::vector<double> upper(static_cast<std::size_t>(n), 0), lower(static_cast<std::size_t>(n), 0);
+  std::vector<char> has(static_cast<std::size_t>(n), 0);
+  for (int x = box.x0; x <= box.x1; ++x) {
+    const auto i = static_cast<std::size_t>(x - box.x0);
+    int y0 = box.y0;
+    while (y0 <= box.y1 && !mask.at(x, y0)) ++y0;
+    if (y0 > box.y1) continue;  // no seed in this column (a mask of several pieces)
+    int y1 = box.y1;
+    while (!mask.at(x, y1)) --y1;
+    upper[i] = y0, lower[i] = y1, has[i] = 1;
+  }
+  std::vector<double> chords(static_cast<std::size_t>(mask.width()), 0.0);
+  for (int i = 0; i < n; ++i) {
+    if (!has[static_cast<std::size_t>(i)]) continue;
+    double up = 0, low = 0;
+    int points = 0;
+    for (int j = std::max(0, i - kReach); j <= std::min(n - 1, i + kReach); ++j)
+      if (has[static_cast<std::size_t>(j)])
+        up += upper[static_cast<std::size_t>(j)], low += lower[static_cast<std::size_t>(j)], ++points;
+    chords[static_cast<std::size_t>(box.x0 + i)] = (low - up) / points + 1;
+  }
+  return chords;
+}
+
+Profile profile(const Mask& mask, const char* which, bool neighbour_average) {
   if (mask.width() < 1 || mask.area() == 0)
     throw InputError(
         fmt::format("two-view slicing: the {} mask is empty (no seed pixels); check the segmentation of "
@@ -76,6 +106,11 @@ Profile profile(const Mask& mask, const char* which) {
     p.rows[static_cast<std::size_t>(y)] = mask.count(0, y, mask.width() - 1, y);
     if (p.rows[static_cast<std::size_t>(y)] > 0) p.box.y0 = std::min(p.box.y0, y), p.box.y1 = y;
   }
+  if (neighbour_average) {
+    p.chords = neighbour_averaged_chords(mask, p.box);
+  } else {
+    p.chords.assign(p.columns.begin(), p.columns.end());
+  }
   return p;
 }
 
@@ -90,7 +125,8 @@ TwoViewResult measure_two_view(const Mask& top, const Mask& side, const SlicingO
         fmt::format("two-view slicing option px_per_mm_top = {}; it must be positive (calibrate it with "
                     "a reference ball of known diameter)",
                     options.px_per_mm_top));
-  const Profile t = profile(top, "top-view"), s = profile(side, "side-view");
+  const Profile t = profile(top, "top-view", options.neighbour_average),
+                s = profile(side, "side-view", options.neighbour_average);
 
   TwoViewResult r;
   r.top_box = t.box;

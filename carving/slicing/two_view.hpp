@@ -26,6 +26,15 @@
 //   2 B_i. Volume: the midpoint rule's +1/(2 N^2) soon falls below the chords' pixel quantisation,
 //   and more slices buy nothing from there (docs/methods/carving.md, step 3, has the numbers).
 // - Without scale correction s = 1: the side view is taken to have the top view's pixel size.
+// - neighbour_average (the dissertation's smoothing, off by default): a column's chord is no longer
+//   its seed-pixel count but the distance between its upper and lower contour points (first and
+//   last seed rows, plus one pixel), each averaged over 5 adjacent columns: the column itself and
+//   two on each side (those with seed pixels; fewer at the tips). It is applied in both views before
+//   the slices' widths are interpolated. It acts as a 5 px box filter: on a smooth convex outline
+//   it lowers a concave chord profile by about w''(x) px^2 (an ellipsoid of half length L px by
+//   about 1.5 ln(L) / L^2 of its volume; docs/carving.md has the measured effect and when to use
+//   it), and a one-column spike reaches a slice at a fifth of its height; the lengths, widths and
+//   thicknesses reported are unchanged.
 #include <vector>
 
 #include "carving/image/mask.hpp"
@@ -36,6 +45,7 @@ struct SlicingOptions {
   int slices = 50;           // N, 1..100000
   double px_per_mm_top = 0;  // top-view pixels per mm (from a reference ball); required, > 0
   bool scale_correction = true;
+  bool neighbour_average = false;  // average each column's contour points with 2 columns on each side
 };
 
 struct Slice {

@@ -8,11 +8,18 @@
 #include <numbers>
 #include <vector>
 
+#include "carving/image/image_io.hpp"
 #include "carving/image/segmentation.hpp"
+#include "carving/measure/measure_seed.hpp"
+#include "carving/measure/seed_profile.hpp"
+#include "carving/render/render_scene.hpp"
 #include "carving/render/renderer.hpp"
 #include "carving/render/shapes.hpp"
 #include "carving/slicing/two_view.hpp"
+#include "core/config/config.hpp"
 #include "core/errors.hpp"
+#include "core/mpi/comm.hpp"
+#include "tests/support/test_dirs.hpp"
 
 namespace suite::carving {
 namespace {
@@ -238,6 +245,165 @@ TEST(TwoView, EndToEndFromRenderedPhotographs) {
                 r.width_mm, r.thickness_mm);
     EXPECT_NEAR(r.volume_mm3 / kWheatVolume, 1, kEndToEndTolerance);
   }
+}
+
+// What docs/carving.md says the slice count buys, over 8 sub-pixel positions of the wheat ellipsoid
+// at 40 px/mm (benchmarks/carving/two_view_slices.cpp, 16 positions: +0.48% at N = 10, mean
+// +0.00% [-0.13, +0.16] at N = 50, -0.01% at N = 400): the mean error follows the midpoint rule's
+// +1/(2 N^2) while that is large (within 0.15% of +0.5% at N = 10: the pixels' share), from N = 50
+// on the mean is within 0.1% of the truth and every position within 0.25% (the pixels' spread;
+// 0.84% at every N before the tips were found from the chords), and 100 or 400 slices move the
+// mean by less than 0.05%: more slices buy nothing there. Averaging does not change that.
+TEST(TwoView, SliceCountBuysWhatTheDocsSay) {
+  constexpr int kPositions = 8;
+  std::vector<Pair> pairs;
+  for (int k = 0; k < kPositions; ++k) {
+    Pose pose = lying_flat();
+    const auto frac = [](double x) { return x - std::floor(x); };
+    pose.centre =
+        Eigen::Vector3d((k + 0.5) / kPositions, frac(0.6180339887 * k + 0.13), frac(0.7548776662 * k + 0.41)) / 40;
+    const Ellipsoid seed(3.6, 1.8, 1.45, pose);
+    pairs.push_back({render(seed, top_view(40)).mask, render(seed, side_view(40)).mask});
+  }
+  for (const bool average : {false, true}) {
+    std::vector<double> means;
+    for (const int n : {10, 50, 100, 400}) {
+      SlicingOptions o;
+      o.px_per_mm_top = 40;
+      o.slices = n;
+      o.neighbour_average = average;
+      double mean = 0, worst = 0;
+      for (const Pair& p : pairs) {
+        const double e = measure_two_view(p.top, p.side, o).volume_mm3 / kWheatVolume - 1;
+        mean += e / kPositions, worst = std::max(worst, std::abs(e));
+      }
+      std::printf("[ info ] %s N = %3d: mean error %+.3f%%, worst %.3f%%\n", average ? "averaged" : "plain   ", n,
+                  100 * mean, 100 * worst);
+      if (n == 10) {
+        EXPECT_NEAR(mean, 1 / (2.0 * n * n), 0.0015) << average;
+      }
+      if (n >= 50) {
+        EXPECT_LT(std::abs(mean), 0.001) << n << " " << average;
+        EXPECT_LT(worst, 0.0025) << n << " " << average;
+      }
+      means.push_back(mean);
+    }
+    EXPECT_LT(std::abs(means[2] - means[1]), 0.0005) << average;
+    EXPECT_LT(std::abs(means[3] - means[1]), 0.0005) << average;
+  }
+}
+
+// --- The dissertation's neighbour averaging (SlicingOptions::neighbour_average) ---
+
+// On a smooth convex outline the 5-column average is a box filter of variance 2 px^2 on each
+// contour point, so a chord w(x) moves by about w''(x) * 1 px^2, downwards where the chord profile
+// is concave. For an ellipsoid (A = a f, B = b f, f = sqrt(1 - x^2/L^2), L the half length in px)
+// the volume then changes by -2 int f f'' / int f^2 = -1.5 ln(2/eps) / L^2 with the tips cut at
+// eps ~ 2/L, where the expansion fails: -1.5 ln(L) / L^2. It is never positive on a convex
+// outline away from the tips (the average of a concave function lies below it). Bound: twice the
+// estimate, the second half for the tips and the pixels. Measured (benchmarks/results/carving/
+// two_view_slices.md): -0.03% on the wheat grain, -0.09% on the 3.18 mm ball at 40 px/mm.
+TEST(TwoView, NeighbourAveragingOfASmoothConvexOutlineChangesTheVolumeLittle) {
+  struct Case {
+    const char* name;
+    double half_length_px;
+    Pair masks;
+    double true_mm3;
+  };
+  const Sphere small_ball(3.18 / 2, lying_flat());
+  const std::vector<Case> cases{{"wheat ellipsoid", 3.6 * 40, wheat_masks(40, 40), kWheatVolume},
+                                {"3.18 mm ball",
+                                 1.59 * 40,
+                                 {render(small_ball, top_view(40)).mask, render(small_ball, side_view(40)).mask},
+                                 small_ball.volume()}};
+  for (const Case& c : cases) {
+    SlicingOptions o;
+    o.px_per_mm_top = 40;
+    o.slices = 200;  // dense slices: the volume integrates the averaged chords
+    const double plain = measure_two_view(c.masks.top, c.masks.side, o).volume_mm3;
+    o.neighbour_average = true;
+    const TwoViewResult averaged = measure_two_view(c.masks.top, c.masks.side, o);
+    const double change = averaged.volume_mm3 / plain - 1;
+    const double estimate = -1.5 * std::log(c.half_length_px) / (c.half_length_px * c.half_length_px);
+    std::printf("[ info ] %s: averaging changes V by %+.4f%% (estimate %+.4f%%); error %+.3f%% -> %+.3f%%\n", c.name,
+                100 * change, 100 * estimate, 100 * (plain / c.true_mm3 - 1),
+                100 * (averaged.volume_mm3 / c.true_mm3 - 1));
+    EXPECT_LT(change, 0) << c.name;
+    EXPECT_GT(change, 2 * estimate) << c.name;
+    EXPECT_LT(std::abs(averaged.volume_mm3 / c.true_mm3 - 1), kVolumeTolerance) << c.name;
+  }
+}
+
+// A one-column spike on the top view's outline (a hair, a speck stuck to the seed: 12 px tall,
+// 1 px wide) at the column nearest a slice centre. Without averaging the slice's chord takes the
+// spike at its full height (times 1 - d, d the slice centre's distance from the column), and the
+// slice counts it over its whole length h = 5.76 px: 5.76 times the spike's own area. With
+// averaging the spike's column shares its upper point with the two columns on each side, so every
+// chord within 2 columns grows by exactly 12/5 px and the slice takes a fifth of the spike: the
+// volume change is exactly 1 / (5 (1 - d)) of the plain one, and the spike enters at
+// h / 5 = 1.15 times its own area instead of 5.76 times.
+TEST(TwoView, NeighbourAveragingTakesAFifthOfAOneColumnSpike) {
+  const Pair clean = wheat_masks(40, 40);
+  SlicingOptions o;
+  o.px_per_mm_top = 40;
+  const TwoViewResult plain_clean = measure_two_view(clean.top, clean.side, o);
+  const Slice& target = plain_clean.slices[20];
+  const int column = static_cast<int>(std::lround(target.top_x_px));
+  const double d = std::abs(target.top_x_px - column);
+  std::vector<std::uint8_t> pixels = clean.top.pixels();
+  int upper = 0;
+  while (!clean.top.at(column, upper)) ++upper;
+  constexpr int kSpikePx = 12;
+  for (int y = upper - kSpikePx; y < upper; ++y) pixels[static_cast<std::size_t>(y) * clean.top.width() + column] = 1;
+  const Mask spiked(clean.top.width(), clean.top.height(), std::move(pixels));
+
+  const double plain_change = measure_two_view(spiked, clean.side, o).volume_mm3 - plain_clean.volume_mm3;
+  o.neighbour_average = true;
+  const double averaged_change =
+      measure_two_view(spiked, clean.side, o).volume_mm3 - measure_two_view(clean.top, clean.side, o).volume_mm3;
+  // The spike's own volume in the elliptic model: its width over one column, at this slice's B.
+  const double own = pi * (0.5 * kSpikePx / 40) * target.b_mm * (1.0 / 40);
+  std::printf(
+      "[ info ] spike of %d px at %.2f px from slice 20's centre: V +%.5f mm^3 plain (%.2f x its own), "
+      "+%.5f mm^3 averaged (%.2f x)\n",
+      kSpikePx, d, plain_change, plain_change / own, averaged_change, averaged_change / own);
+  EXPECT_NEAR(plain_change, own * target.h_mm * 40 * (1 - d), 1e-9);
+  EXPECT_NEAR(averaged_change, plain_change / (5 * (1 - d)), 1e-9);
+  EXPECT_NEAR(averaged_change / own, target.h_mm * 40 / 5, 1e-6);
+}
+
+// The option from the profile key through measure_seed: the rendered two-view photographs of
+// carving/examples/synthetic/wheat_two_view.yaml measured with the profile `seedcarve render` wrote,
+// plain and with the command line's `slicing.neighbour_average=true`; seed.json says which, and
+// the volume is measure_two_view's on the same segmented images with the option set.
+TEST(TwoView, NeighbourAveragingFromTheProfileEndToEnd) {
+  const mpi::Comm world(MPI_COMM_WORLD);
+  const auto dir = testing::scratch_dir(world);
+  render_scene(config::Config::from_file(SUITE_SOURCE_DIR "/carving/examples/synthetic/wheat_two_view.yaml"),
+               dir / "images");
+  const auto profile_file = dir / "images" / "profile.yaml";
+  const SeedProfile plain = read_seed_profile(config::Config::from_file(profile_file));
+  const SeedProfile averaged =
+      read_seed_profile(config::Config::from_file(profile_file, {"slicing.neighbour_average=true"}));
+  EXPECT_FALSE(plain.slicing.neighbour_average);  // off by default
+  ASSERT_TRUE(averaged.slicing.neighbour_average);
+  EXPECT_NE(averaged.effective_yaml.find("neighbour_average: true"), std::string::npos) << averaged.effective_yaml;
+
+  const SeedEntry seed{"wheat", {dir / "images" / "top.png", dir / "images" / "side.png"}, "slicing", {}, {}};
+  const SeedRow a = measure_seed(seed, plain, dir / "plain"), b = measure_seed(seed, averaged, dir / "averaged");
+  ASSERT_TRUE(a.ok) << a.message;
+  ASSERT_TRUE(b.ok) << b.message;
+  EXPECT_NE(testing::read_file(dir / "averaged" / "seed.json").find("\"neighbour_average\": true"), std::string::npos);
+  EXPECT_NE(testing::read_file(dir / "plain" / "seed.json").find("\"neighbour_average\": false"), std::string::npos);
+
+  const Segmentation top = segment(read_image(dir / "images" / "top.png"), averaged.segmentation);
+  const Segmentation side = segment(read_image(dir / "images" / "side.png"), averaged.segmentation);
+  ASSERT_TRUE(top.found && side.found);
+  EXPECT_DOUBLE_EQ(b.volume_mm3, measure_two_view(top.mask, side.mask, averaged.slicing).volume_mm3);
+  EXPECT_DOUBLE_EQ(a.volume_mm3, measure_two_view(top.mask, side.mask, plain.slicing).volume_mm3);
+  EXPECT_NE(a.volume_mm3, b.volume_mm3);
+  std::printf("[ info ] rendered wheat photographs: V %.4f mm^3 plain, %.4f averaged (%+.3f%%)\n", a.volume_mm3,
+              b.volume_mm3, 100 * (b.volume_mm3 / a.volume_mm3 - 1));
 }
 
 TEST(TwoView, InputErrorsAndDensity) {
