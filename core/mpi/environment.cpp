@@ -51,7 +51,7 @@ Environment::Environment(int& argc, char**& argv, ThreadLevel required) {
     // (a study's evaluations, foam-erosion's mpirun) see the environment it was given.
     std::vector<const char*> set;
     if (!launched())
-      for (const auto& [name, value] : {std::pair{"OMPI_MCA_ess_singleton_isolated", "1"}, std::pair{"OMPI_MCA_pml", "ob1"}})
+      for (const auto& [name, value] : {std::pair{"OMPI_MCA_pml", "ob1"}})
         if (!std::getenv(name)) setenv(name, value, 1), set.push_back(name);
     SUITE_MPI_CHECK(MPI_Init_thread(&argc, &argv, to_mpi(required), &provided));
     for (const char* name : set) unsetenv(name);
