@@ -1,11 +1,14 @@
 #include "core/io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <fmt/format.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 
 #include "core/errors.hpp"
 
@@ -29,12 +32,17 @@ void fsync_path(const std::filesystem::path& path) {
 }
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  // A temporary name of its own (mkstemp), so that processes writing the same file at once (a
+  // Slurm array's tasks adding the same seeds to a register) each rename a whole file; the last
+  // rename wins.
+  std::string name = path.string() + ".tmp.XXXXXX";
+  const int fd = ::mkstemp(name.data());
   if (fd < 0) {
     throw InputError(fmt::format("cannot write '{}': {}; check that the folder exists and is writable", path.string(),
                                  std::strerror(errno)));
   }
+  const std::filesystem::path tmp = name;
+  ::fchmod(fd, 0644);  // mkstemp's 0600, as a plain open would have made it
   auto give_up = [&](const char* what) {
     const int error = errno;
     ::close(fd);

@@ -1,7 +1,9 @@
 #pragma once
 // Files that are either absent, the old version, or the complete new version: written to a
-// temporary name in the same folder, flushed to disk (fsync), then renamed over the target,
-// and the folder entry flushed too. Not collective: call on the one rank that writes.
+// temporary name of its own in the same folder (NAME.tmp.XXXXXX, so that processes writing the
+// same file at once do not share it: the last rename wins), flushed to disk (fsync), then
+// renamed over the target, and the folder entry flushed too. Not collective: call on the one
+// rank that writes.
 #include <filesystem>
 #include <string_view>
 
