@@ -82,14 +82,23 @@ suite::cli::ProgramSpec program_spec() {
                            Option::count("seed", "S", "seed of the split, the folds and the forest (default 1)", 0)}},
               CommandSpec{"classify",
                           "measure photographs (files or folders) and predict each grain's ASV class with a model "
-                          "from `riceasv train`: DIR/classes.csv (class and vote share per grain), DIR/classify.json "
-                          "(counts per class and per image), DIR/results.csv (the traits)",
+                          "from `riceasv train` (--model) or a network of your own in ONNX (--onnx, run through "
+                          "OpenCV dnn on a crop around each grain): DIR/classes.csv (class and vote share or score "
+                          "per grain), DIR/classify.json (counts per class and per image), DIR/results.csv (the "
+                          "traits); with --onnx also DIR/scores.csv (every class's score)",
                           "IMAGES...",
                           1,
                           -1,
                           false,
                           {Option::text("out", "DIR", "output folder (created)", true),
-                           Option::text("model", "MODEL_DIR", "the folder `riceasv train --out` wrote", true),
+                           Option::text("model", "MODEL_DIR", "the folder `riceasv train --out` wrote"),
+                           Option::text("onnx", "NET",
+                                        "instead of --model: NET.onnx with NET.json beside it (classes, input size, "
+                                        "crop_mm, normalisation; docs/rice.md), or a folder holding net.onnx and "
+                                        "net.json"),
+                           Option::flag("crops",
+                                        "with --onnx: also write DIR/crops/<image>_g<grain>.png, each "
+                                        "grain as the network sees it before normalisation"),
                            Option::number("pixel-size", "MM", "size of a pixel on the dish (required)")}},
           }};
 }
@@ -174,7 +183,15 @@ int classify(const suite::cli::CommandArguments& c, suite::Logger& log) {
   const suite::rice::MeasureOptions m = measure_options(c);
   std::vector<std::filesystem::path> targets(c.targets.begin(), c.targets.end());
   const std::filesystem::path out = c.text_or("out", "");
-  const auto s = suite::rice::classify_images(targets, c.text_or("model", ""), m, out, log);
+  if (c.has("model") == c.has("onnx"))
+    throw suite::InputError(
+        "riceasv classify: give either --model MODEL_DIR (a folder from `riceasv train`) or --onnx NET (a network "
+        "of your own in ONNX, with NET.json beside it; docs/rice.md), not both and not neither");
+  if (c.has("crops") && !c.has("onnx"))
+    throw suite::InputError("riceasv classify: --crops goes with --onnx (the crops a network sees); leave it out");
+  const auto s = c.has("onnx")
+                     ? suite::rice::classify_images_onnx(targets, c.text_or("onnx", ""), m, out, c.has("crops"), log)
+                     : suite::rice::classify_images(targets, c.text_or("model", ""), m, out, log);
   log.info("{} grains classified ({} flagged) from {} images; table {}", s.grains, s.flagged, s.images,
            (out / "classes.csv").string());
   if (s.failed_images > 0)
