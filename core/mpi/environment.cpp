@@ -34,7 +34,7 @@ ThreadLevel from_mpi(int t) {
 // True when a launcher started this process (Open MPI's mpirun, or a PMI/PMIx launcher such as
 // srun): its variables are in the environment.
 bool launched() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+  for (const char* name : {"OMPI_UNIVERSE_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
     if (std::getenv(name)) return true;
   return false;
 }

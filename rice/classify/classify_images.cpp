@@ -95,14 +95,6 @@ ClassifySummary write_classification(const std::vector<ResultRow>& rows, const s
   return summary;
 }
 
-ResultRow failed_image(const std::string& image, const std::string& message) {
-  ResultRow r;
-  r.image = image;
-  r.status = "failed";
-  r.message = message;
-  return r;
-}
-
 }  // namespace
 
 ClassifySummary classify_images(const std::vector<std::filesystem::path>& targets,
@@ -190,12 +182,12 @@ ClassifySummary classify_images_onnx(const std::vector<std::filesystem::path>& t
         }
       }
     } catch (const InputError& e) {
-      rows.push_back(failed_image(name, e.what()));
+      rows.push_back(ResultRow::failed(name, e.what()));
       changed = true;
       i = j;
       continue;
     } catch (const cv::Exception& e) {
-      rows.push_back(failed_image(
+      rows.push_back(ResultRow::failed(
           name, fmt::format("the ONNX network failed on a grain of '{}' ({}); check the network with a crop "
                             "from --crops",
                             name, e.err)));

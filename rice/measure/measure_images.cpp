@@ -37,14 +37,6 @@ void write_overlay(const std::filesystem::path& path, const cv::Mat& grey, const
   write_png(path, overlay);
 }
 
-ResultRow failed_row(const std::string& image, const std::string& message) {
-  ResultRow r;
-  r.image = image;
-  r.status = "failed";
-  r.message = message;
-  return r;
-}
-
 }  // namespace
 
 const std::vector<std::string>& result_columns() {
@@ -132,11 +124,11 @@ std::vector<ResultRow> measure_images(const std::vector<std::filesystem::path>& 
       if (overlays) write_overlay(out / "overlays" / (path.stem().string() + ".png"), grey, t);
       log.info("{}: {} grains ({} flagged), {}", name, t.grains.size(), flagged, t.levels.populations);
     } catch (const InputError& e) {
-      rows.push_back(failed_row(name, e.what()));
+      rows.push_back(ResultRow::failed(name, e.what()));
       record["images"].push_back({{"image", name}, {"failed", e.what()}});
     } catch (const cv::Exception& e) {
       const std::string message = fmt::format("OpenCV failed on '{}': {}; check that it is a photograph", name, e.err);
-      rows.push_back(failed_row(name, message));
+      rows.push_back(ResultRow::failed(name, message));
       record["images"].push_back({{"image", name}, {"failed", message}});
     }
   }

@@ -5,6 +5,7 @@
 // collective.
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/log/logger.hpp"
@@ -18,6 +19,15 @@ struct ResultRow {
   std::string status;   // ok, flagged or failed
   std::string message;  // failed: why, and what to do
   DishLevels levels;
+
+  // The row of an image that could not be measured.
+  static ResultRow failed(std::string image, std::string message) {
+    ResultRow r;
+    r.image = std::move(image);
+    r.status = "failed";
+    r.message = std::move(message);
+    return r;
+  }
 };
 
 // The table's columns, in order (units in the names and in the '#' line above them).
