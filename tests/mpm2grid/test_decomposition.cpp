@@ -35,7 +35,7 @@ TEST(Partition, BalancesBothSpeciesOverConnectedParts) {
       for (int s = 0; s < 2; ++s)
         load[static_cast<std::size_t>(part[b])][static_cast<std::size_t>(s)] += weights[b][static_cast<std::size_t>(s)];
     for (int s = 0; s < 2; ++s) {
-      const double mean = (s == 0 ? 4800.0 : 4320.0) / parts;
+      const double mean = (s == 0 ? 4800.0 : 2880.0) / parts;
       for (const auto& l : load)
         EXPECT_LE(static_cast<double>(l[static_cast<std::size_t>(s)]), 1.01 * mean + 100)
             << parts << " parts, species " << s;
