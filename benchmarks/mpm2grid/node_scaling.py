@@ -1,0 +1,223 @@
+#!/usr/bin/python3
+"""Table and chart of run_node_scaling.sh (strong scaling on one many-core node). Prints Markdown.
+    node_scaling.py CSV PNG LABEL=RUNS_DIR...   the runs' rows into CSV (mpm_metrics.py columns),
+                                                then the report
+    node_scaling.py CSV PNG                     the report from a CSV written before
+
+LABEL names one session on a node (a lease: `lease1`), RUNS_DIR is run_node_scaling.sh's OUT_DIR
+(runs CASE-rRANKS-REPEAT, CASE-rRANKS-MODE-REPEAT, ceiling copies CASE-copyI, machine.txt).
+
+Per case and rank count: the step phase on the slowest rank (run.json phases.step.max_s, median
+over repeats), the speedup T1 / TP with T1 the fastest one-rank run (a slow one-rank run cannot
+inflate a speedup: the first run on a fresh node ran 1.6x slower than the next, lease 1),
+efficiency = speedup / P, halo bytes and messages per step,
+rebalances and their seconds. The node's ceiling (the copies, all at once, one per core): the
+lone one-rank run's step time over the mean copy's (what shared memory bandwidth and caches
+allow) and over the slowest copy's (what P ranks of equal shares, who wait for each other every
+step, can reach when one core is that slow). The breakdown at the largest rank count, seconds
+over the run averaged over the ranks: compute (the phases with no MPI: grid, stresses, both
+P2G and G2P, grid solve, boundary, inlet), its slowest rank over the mean (per phase, summed),
+waiting in MPI (every phase's wait), the balancing, and the rest of the communication phases
+(packing, unpacking, the migration's lookups), set beside one rank's compute over P.
+"""
+import csv
+import math
+import re
+import statistics
+import sys
+from pathlib import Path
+
+import matplotlib
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from mpm_metrics import COLUMNS, STEP_PHASES, metrics, slug  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+COMPUTE = ["grid", "stresses", "p2g water", "p2g soil", "grid solve", "boundary", "g2p water", "g2p soil", "inlet"]
+COMM = ["halo plan", "halo sum", "halo copy", "outflow", "migrate"]
+CASES = {"ex2": "Table 3.4 example 2, h = 0.025 m", "ex2fine": "example 2, h = 0.0125 m",
+         "ex2consistent": "example 2, h = 0.025 m, consistent drag", "3d": "two_species_3d, h = 5 mm"}
+RUN = re.compile(r"^(?P<case>[a-z0-9]+)-r(?P<ranks>\d+)(-(?P<mode>equal|measured))?-(?P<repeat>\d+)$")
+COPY = re.compile(r"^(?P<case>[a-z0-9]+)-copy(?P<copy>\d+)$")
+HEAD = ["lease", "case", "kind", "mode", "repeat", "copy"] + COLUMNS
+
+
+def collect(label, runs_dir):
+    rows = []
+    for d in sorted(p for p in Path(runs_dir).iterdir() if p.is_dir()):
+        m, c = RUN.match(d.name), COPY.match(d.name)
+        if not (m or c):
+            continue
+        row = {k: "" if v is None else str(v) for k, v in metrics(str(d)).items()}
+        row.update(lease=label, case=(m or c)["case"], kind="run" if m else "copy",
+                   mode=(m["mode"] or "equal") if m else "", repeat=m["repeat"] if m else "",
+                   copy=c["copy"] if c else "")
+        rows.append(row)
+    machine = Path(runs_dir) / "machine.txt"
+    return rows, machine.read_text().strip() if machine.exists() else ""
+
+
+def num(row, key):
+    v = row.get(key, "")
+    return float(v) if v not in ("", None) else math.nan
+
+
+def phase_sum(row, phases, stat):
+    return sum(0.0 if math.isnan(num(row, f"ph_{slug(p)}_{stat}")) else num(row, f"ph_{slug(p)}_{stat}")
+               for p in phases)
+
+
+def report(rows, machines, png):
+    out = []
+    leases = list(dict.fromkeys(r["lease"] for r in rows))
+    curves = {}
+    for lease in leases:
+        out.append(f"### {lease}")
+        out.append("")
+        if machines.get(lease):
+            out.append("Node: " + machines[lease].replace("\n", "; ") + ".")
+            out.append("")
+        mine = [r for r in rows if r["lease"] == lease]
+        for case in [c for c in CASES if any(r["case"] == c for r in mine)]:
+            runs = [r for r in mine if r["case"] == case and r["kind"] == "run" and r["mode"] == "equal"
+                    and r["status"] == "completed"]
+            ones = {r["repeat"]: num(r, "step_s") for r in runs if r["ranks"] == "1"}
+            if not ones:
+                continue
+            t1 = min(ones.values())
+            steps = statistics.median(num(r, "steps") for r in runs)
+            particles = statistics.median(num(r, "particles_mean") for r in runs)
+            out.append(f"**{CASES[case]}** ({particles / 1e3:.0f}k particles, {steps:.0f} steps; one rank "
+                       f"{t1 / steps * 1e3:.1f} ms per step, {t1 / steps / particles * 1e9:.0f} ns per particle-step)")
+            out.append("")
+            out.append("| ranks | runs | step phase (s) | speedup | efficiency | halo MB / step | messages / step "
+                       "| rebalances (s) |")
+            out.append("| --- | --- | --- | --- | --- | --- | --- | --- |")
+            ranks = sorted({int(r["ranks"]) for r in runs})
+            for p in ranks:
+                mine_p = [r for r in runs if int(r["ranks"]) == p]
+                tp = t1 if p == 1 else statistics.median(num(r, "step_s") for r in mine_p)
+                s = t1 / tp
+                halo = statistics.median(num(r, "halo_bytes_per_step") for r in mine_p) if p > 1 else 0
+                msgs = statistics.median(num(r, "halo_messages_per_step") for r in mine_p) if p > 1 else 0
+                reb = statistics.median(num(r, "rebalances") for r in mine_p) if p > 1 else 0
+                bal = statistics.median(num(r, "ph_balance_max") for r in mine_p) if p > 1 else 0
+                times = ", ".join(f"{num(r, 'step_s'):.3g}" for r in mine_p)
+                out.append(f"| {p} | {len(mine_p)} | {tp:.3g} ({times}) | {s:.2f}x | {100 * s / p:.0f}% | "
+                           f"{halo / 1e6:.2f} | {msgs:.0f} | {reb:.0f} ({bal:.2f}) |")
+                if case == "ex2":
+                    curves.setdefault(lease, []).append((p, s))
+            copies = [num(r, "step_s") for r in mine if r["case"] == case and r["kind"] == "copy"
+                      and r["status"] == "completed"]
+            if copies:
+                mean_c, worst_c = statistics.mean(copies), max(copies)
+                out.append("")
+                out.append(f"Ceiling, {len(copies)} pinned one-rank copies at once: step phase {min(copies):.3g}-"
+                           f"{worst_c:.3g} s (mean {mean_c:.3g}); lone one-rank run over the mean copy "
+                           f"**{t1 / mean_c:.2f}**, over the slowest **{t1 / worst_c:.2f}**.")
+                if lease == leases[-1] or case == "ex2":
+                    curves.setdefault(f"{lease} ceiling", {})[case] = (t1 / mean_c, t1 / worst_c)
+            top = max(ranks)
+            if top > 1:
+                big = [r for r in runs if int(r["ranks"]) == top]
+                row = min(big, key=lambda r: num(r, "step_s"))
+                compute = phase_sum(row, COMPUTE, "mean")
+                compute_max = phase_sum(row, COMPUTE, "max")
+                wait = phase_sum(row, STEP_PHASES, "wait")
+                balance = num(row, "ph_balance_mean")
+                comm = phase_sum(row, COMM, "mean") - phase_sum(row, COMM, "wait")
+                one = min((r for r in runs if r["ranks"] == "1"), key=lambda r: num(r, "step_s"))
+                ideal = phase_sum(one, COMPUTE, "mean") / top
+                out.append("")
+                out.append(f"Where the time goes at {top} ranks (the faster run, {num(row, 'step_s'):.3g} s): compute "
+                           f"{compute:.3g} s a rank on average (one rank's / {top}: {ideal:.3g} s, so "
+                           f"{compute / ideal:.2f}x), its slowest rank per phase {compute_max / compute:.2f}x "
+                           f"the mean; waiting in MPI {wait:.3g} s; balancing {balance:.3g} s; the rest of the "
+                           f"communication {comm:.3g} s.")
+            out.append("")
+        measured = [r for r in mine if r["kind"] == "run" and r["mode"] == "measured" and r["status"] == "completed"]
+        if measured:
+            out.append("Prototype `decomposition.speeds: measured` (branch wip/measured-speeds), step phase against "
+                       "equal shares in the same repeat:")
+            out.append("")
+            for r in measured:
+                twin = [q for q in mine if q["kind"] == "run" and q["mode"] == "equal" and q["case"] == r["case"]
+                        and q["ranks"] == r["ranks"] and q["repeat"] == r["repeat"]]
+                if twin:
+                    out.append(f"- {r['case']}, {r['ranks']} ranks, repeat {r['repeat']}: {num(r, 'step_s'):.3g} s "
+                               f"against {num(twin[0], 'step_s'):.3g} s ({num(r, 'rebalances'):.0f} rebalances, "
+                               f"{num(r, 'ph_balance_max'):.2f} s)")
+            out.append("")
+    chart(curves, png)
+    return "\n".join(out)
+
+
+def chart(curves, png):
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    top = 1
+    for label, points in curves.items():
+        if label.endswith("ceiling"):
+            continue
+        points.sort()
+        by_p = {}
+        for p, s in points:
+            by_p.setdefault(p, []).append(s)
+        ps = sorted(by_p)
+        top = max(top, max(ps))
+        ax.plot(ps, [statistics.median(by_p[p]) for p in ps], "o-", label=f"example 2, h = 0.025 m ({label})")
+        ceiling = curves.get(f"{label} ceiling", {}).get("ex2")
+        if ceiling:
+            ax.plot([top], [ceiling[0] * top], "^", color=ax.lines[-1].get_color(),
+                    label=f"ceiling, mean copy ({label})")
+            ax.plot([top], [ceiling[1] * top], "v", color=ax.lines[-1].get_color(),
+                    label=f"ceiling, slowest copy ({label})")
+    ax.plot([1, top], [1, top], "k--", lw=0.8, label="ideal")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log", base=2)
+    ax.set_xlabel("ranks (one per core)")
+    ax.set_ylabel("speedup of the step phase over one rank")
+    ax.set_title("mpm2grid strong scaling on one 16-core node")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png, dpi=120)
+
+
+def main(argv):
+    if len(argv) < 3:
+        sys.exit(__doc__)
+    csv_path, png = argv[1], argv[2]
+    machines = {}
+    if len(argv) > 3:
+        rows = []
+        for arg in argv[3:]:
+            label, _, runs_dir = arg.partition("=")
+            found, machine = collect(label, runs_dir)
+            rows += found
+            machines[label] = machine
+        with open(csv_path, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=HEAD)
+            w.writeheader()
+            w.writerows(rows)
+        with open(Path(csv_path).with_suffix(".machines.txt"), "w") as f:
+            for label, text in machines.items():
+                f.write(f"[{label}]\n{text}\n")
+    else:
+        with open(csv_path) as f:
+            rows = list(csv.DictReader(f))
+        info = Path(csv_path).with_suffix(".machines.txt")
+        if info.exists():
+            label = None
+            for line in info.read_text().splitlines():
+                if line.startswith("[") and line.endswith("]"):
+                    label = line[1:-1]
+                    machines[label] = ""
+                elif label:
+                    machines[label] = (machines[label] + "\n" + line).strip()
+    print(report(rows, machines, png))
+
+
+if __name__ == "__main__":
+    main(sys.argv)

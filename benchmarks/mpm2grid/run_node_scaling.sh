@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# Strong scaling of mpm2grid on one many-core node, and the node's own ceiling in the same run.
+# Needs bash, mpirun and taskset only (no Python), so that it also runs on a node that has the
+# executable, its shared libraries and an Open MPI copied over rather than the suite's packages;
+# node_scaling.py reads what it leaves, on any machine with Python (results:
+# benchmarks/results/mpm2grid/node_scaling.md).
+#
+#   benchmarks/mpm2grid/run_node_scaling.sh MPM2GRID SCENES_DIR BENCH_DIR OUT_DIR
+#     MPM2GRID    the executable; SCENES_DIR solvers/mpm2grid/scenes; BENCH_DIR benchmarks/mpm2grid
+#     OUT_DIR     one folder per run (run.json, series.csv, summary.json, stderr; no HDF5)
+#   env: RANKS ("1 2 4 8 16"), REPEATS (2), COPIES (16: the ceiling's pinned one-rank copies),
+#        CASES ("ex2 ex2fine ex2consistent 3d"), BIND ("--bind-to core --map-by core")
+#
+# Cases (issue 28's table): ex2 = Table 3.4 example 2 at h = 0.025 m (433k particles, 300 steps,
+# every rank count, REPEATS times, the ceiling first: it also warms a fresh node's memory);
+# ex2fine = h = 0.0125 m (1.73M, 100 steps, 1 and the largest rank count, and its ceiling);
+# ex2consistent = h = 0.025 m with the consistent PETSc drag (60 steps); 3d = benchmarks'
+# two_species_3d at h = 5 mm (338k, 80 steps). Runs are named CASE-rRANKS-REPEAT.
+# A run's length is its step count times the dt that a 5-step probe measures, so that every run
+# ends at time.end and writes its decomposition block (a run stopped by time.max_steps does not).
+# The ceiling: COPIES independent one-rank runs (singletons), copy i pinned to core i by taskset,
+# all started at once; their step times against the lone one-rank run's are what the node allows
+# (the mean copy: the node's shared memory and caches; the slowest: what ranks of equal shares,
+# which wait for each other every step, can reach).
+set -uo pipefail
+bin=$1 scenes=$2 bench=$3 out=$4
+ranks_list=${RANKS:-1 2 4 8 16} repeats=${REPEATS:-2} copies=${COPIES:-16}
+cases=${CASES:-ex2 ex2fine ex2consistent 3d} bind=${BIND:---bind-to core --map-by core}
+mkdir -p "$out"
+top=$(echo "$ranks_list" | tr ' ' '\n' | sort -n | tail -1)
+quiet=("time.output=1000 s" --log-level warn)
+
+# run DIR RANKS ARGS...: one run; keeps only its small files.
+run() {
+  local dir=$1 ranks=$2; shift 2
+  rm -rf "$dir"
+  local t0=$SECONDS rc=0
+  if [ "$ranks" = 1 ]; then
+    taskset -c 0 "$bin" "$@" "${quiet[@]}" --out "$dir" 2> "$dir.err" || rc=$?
+  else
+    # shellcheck disable=SC2086
+    mpirun -n "$ranks" $bind "$bin" "$@" "${quiet[@]}" --out "$dir" 2> "$dir.err" || rc=$?
+  fi
+  find "$dir" -name '*.h5' -delete -o -name '*.xmf' -delete 2> /dev/null
+  echo "$(basename "$dir"): rc $rc, $((SECONDS - t0)) s"
+}
+
+# end_time NAME STEPS ARGS...: the time.end of STEPS steps, from a 5-step probe's stop line.
+end_time() {
+  local name=$1 steps=$2; shift 2
+  taskset -c 0 "$bin" "$@" time.max_steps=5 "${quiet[@]}" --out "$out/$name-probe" 2> "$out/$name-probe.err"
+  rm -rf "$out/$name-probe"
+  local t5
+  t5=$(sed -n 's/.*stopped at step 5 (t = \([0-9.e+-]*\) s).*/\1/p' "$out/$name-probe.err")
+  [ -n "$t5" ] || { echo "probe $name failed: $(tail -2 "$out/$name-probe.err")" >&2; return 1; }
+  awk -v t="$t5" -v n="$steps" 'BEGIN { printf "%.6g", t / 5 * n }'
+}
+
+# ceiling NAME ARGS...: COPIES pinned singletons at once.
+ceiling() {
+  local name=$1; shift
+  local t0=$SECONDS
+  for ((i = 0; i < copies; i++)); do
+    rm -rf "$out/$name-copy$i"
+    OMPI_MCA_orte_tmpdir_base=/tmp/copy$i taskset -c "$i" "$bin" "$@" "${quiet[@]}" --out "$out/$name-copy$i" \
+      2> "$out/$name-copy$i.err" &
+  done
+  wait
+  find "$out" -path "*$name-copy*" \( -name '*.h5' -o -name '*.xmf' \) -delete
+  echo "$name: $copies pinned copies, $((SECONDS - t0)) s"
+}
+
+{
+  echo "host $(uname -n), $(nproc) cores: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2)"
+  echo "kernel $(uname -r); mpirun $(mpirun --version 2>&1 | head -1); bind: $bind"
+  date -u +%Y-%m-%dT%H:%MZ
+} > "$out/machine.txt"
+cat "$out/machine.txt"
+
+# scaling NAME REPEATS RANKS_LIST ARGS...: every rank count in turn, REPEATS times.
+scaling() {
+  local name=$1 reps=$2 list=$3; shift 3
+  for ((r = 1; r <= reps; r++)); do
+    for n in $list; do run "$out/$name-r$n-$r" "$n" "$@"; done
+  done
+}
+
+ex2=$scenes/table_3_4_example2.yaml
+for c in $cases; do
+  case $c in
+    ex2) args=("$ex2" "grid.spacing=0.025 m") steps=300 reps=$repeats list=$ranks_list copy=1;;
+    ex2fine) args=("$ex2" "grid.spacing=0.0125 m") steps=100 reps=1 list="1 $top" copy=1;;
+    ex2consistent) args=("$ex2" "grid.spacing=0.025 m" drag=consistent) steps=60 reps=1 list="1 $top" copy=0;;
+    3d) args=("$bench/two_species_3d.yaml" "grid.spacing=0.005 m") steps=80 reps=1 list="1 $top" copy=0;;
+    *) echo "unknown case $c (ex2 ex2fine ex2consistent 3d)" >&2; continue;;
+  esac
+  end=$(end_time "$c" "$steps" "${args[@]}") || continue
+  series=$(awk -v e="$end" 'BEGIN { printf "%.6g", e / 4 }')
+  args+=("time.end=$end s" "time.series=$series s")
+  [ "$copy" = 1 ] && ceiling "$c" "${args[@]}"
+  scaling "$c" "$reps" "$list" "${args[@]}"
+done
