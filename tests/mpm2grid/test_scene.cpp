@@ -129,10 +129,11 @@ TEST(SceneSeeding, PoreWaterSaturatesTheSoilAndRemovesItsCohesion) {
 // In the mixture the pore water fills the pores exactly (phi_i = n in the interior), so the
 // saturation is 1 only where the nodes' water is counted in full: at the walls, whose nodes hold
 // part of an interior node's weight (the slip wall's node half, the friction floor's nodes half
-// and 1/24), it is divided by that part (docs/methods/mpm2grid.md, "Saturation"). Next to the walls S then stays
-// within the lattice's quadrature error of 1 (measured at least 0.993; without the division 0.43
-// at the block's corner), and farther than 4h from the walls and the block's free sides it is 1
-// to round-off.
+// and 1/24), it is divided by that part (docs/methods/mpm2grid.md, "Saturation"); the water folds at
+// the friction floor (it slips there), and the soil reads the node beyond the floor as its mirror.
+// Next to the walls S then stays within the lattice's quadrature error of 1 (measured 1.0000; 0.993
+// before the water folded at the floor; without the division 0.43 at the block's corner), and
+// farther than 4h from the walls and the block's free sides it is 1 to round-off.
 TEST(SceneSeeding, MixturePoreWaterSaturatesTheSoilUpToTheWalls) {
   const auto scene = two_blocks(true);
   Simulation<2> sim(scene.simulation);

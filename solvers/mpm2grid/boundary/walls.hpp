@@ -3,7 +3,8 @@
 //   slip      no flow into the wall, free tangential motion: v -= min(v . n, 0) n
 //   sticky    no motion at the wall: v = 0
 //   friction  Coulomb: the normal velocity into the wall is removed and the tangential speed
-//             reduced by mu times that normal speed (to zero at most)
+//             reduced by mu times that normal speed (to zero at most). For the soil only: the
+//             water, inviscid, slips along a friction wall (Walls::for_water()).
 //   open      nothing; particles that leave through an open side leave the model (outflow)
 // n is the inward normal. The conditions act on the grid nodes on or beyond the wall plane (the
 // B-spline stencils of particles near a wall reach those nodes), so the box should have its sides
@@ -21,6 +22,18 @@ struct Walls {
   Vec<Dim> lo = Vec<Dim>::Zero(), hi = Vec<Dim>::Ones();
   std::array<std::array<WallKind, 2>, Dim> kind{};  // [axis][0: low side, 1: high side]
   double friction = 0;                              // Coulomb coefficient for friction walls
+
+  // The walls the water sees: every friction wall a slip wall. Coulomb friction is the soil's
+  // grains against the wall; an inviscid fluid has no wall friction, and the friction law, whose
+  // impulse follows the normal velocity the transfers bring back to a wall node every step, made
+  // the water's flow depend on the step count (docs/mpm2grid.md, "What a step does", step 4).
+  Walls for_water() const {
+    Walls w = *this;
+    for (auto& sides : w.kind)
+      for (WallKind& k : sides)
+        if (k == WallKind::friction) k = WallKind::slip;
+    return w;
+  }
 
   // True when some side is open (particles can leave the model).
   bool any_open() const {

@@ -23,7 +23,9 @@ template <int Dim>
 Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm)
     : s_(settings),
       grid_(settings.h),
+      water_walls_(settings.walls.for_water()),
       fold_(settings.walls, grid_.spacing(), settings.inlet.has_value()),
+      water_fold_(water_walls_, grid_.spacing(), settings.inlet.has_value()),
       comm_(std::move(comm)) {
   if (s_.inlet) inlet_.emplace(*s_.inlet);
   if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, grid_);
@@ -137,7 +139,7 @@ void Simulation<Dim>::particles_to_grids(double dt) {
   const double fold_dt = s_.drag == DragScheme::explicit_euler ? 0.0 : dt;
   {
     auto timed = phase(StepPhase::p2g_water);
-    spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt, .walls = &fold_, .gravity = s_.gravity},
+    spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt, .walls = &water_fold_, .gravity = s_.gravity},
            water_nodes_);
   }
   if (dd_) {
@@ -187,7 +189,7 @@ void Simulation<Dim>::step(double dt) {
   const double t_next = time_ + dt;
   {
     auto timed = phase(StepPhase::boundary);
-    s_.walls.apply(grid_, water_nodes_);
+    water_walls_.apply(grid_, water_nodes_);
     s_.walls.apply(grid_, soil_nodes_);
     if (inlet_) inlet_->impose(grid_, water_nodes_, t_next);
   }
@@ -299,7 +301,7 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mixture_volume_rates(double dt) {
       const Vec<Dim> flux = f * soil_nodes_.velocity[i] + (1 - f) * water_nodes_.velocity[i];
       for (int d = 0; d < Dim; ++d) tile->field(1 + d)[t] = flux[d];
     });
-    fold_.mirror(*tile, fields);
+    water_fold_.mirror(*tile, fields);
   };
   sweep_groups(
       water_.x, grid_, *tile, enter, [] {},
@@ -322,35 +324,49 @@ void Simulation<Dim>::distribute() {
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
   if (s_.mixture) {
-    grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, &fold_,
+    grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
                                                    [](std::size_t) {});
     return;
   }
   divergence_.resize(water_.size());
-  grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &fold_,
+  grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
                                                        [&](std::size_t p, double div) { divergence_[p] = div; });
 }
 
 // The water grid's masses for the saturation (docs/methods/mpm2grid.md, "Continuum model"), each
 // divided by the part of its node's weight inside the walls. Only the blocks within two cells of a
-// wall hold nodes with part of their weight outside.
+// wall hold nodes with part of their weight outside. Across a wall where the water folds and the
+// soil does not (a friction wall), the node beyond it, which the water's fold emptied, reads its
+// mirror's fill: the soil's G2P samples it as it is.
 template <int Dim>
 void Simulation<Dim>::wall_water_fill() {
   water_fill_ = water_nodes_.mass;
   constexpr int kSide = BlockGrid<Dim>::kSide;
   const double h = grid_.spacing(), reach = 2 * h;
+  std::vector<std::size_t> near_blocks;
   for (std::size_t b = 0; b < grid_.blocks(); ++b) {
     const Index<Dim>& c = grid_.block_coord(b);
     bool near = false;
     for (int d = 0; d < Dim; ++d)
       near = near || c[d] * kSide * h < s_.walls.lo[d] + reach || (c[d] + 1) * kSide * h > s_.walls.hi[d] - reach;
     if (!near) continue;
+    near_blocks.push_back(b);
     for (std::size_t i = b * BlockGrid<Dim>::kNodes; i < (b + 1) * BlockGrid<Dim>::kNodes; ++i) {
       if (!(water_fill_[i] > 0)) continue;
-      const double inside = fold_.inside_fraction(s_.walls, grid_.position(static_cast<long>(i)), h);
+      const double inside = water_fold_.inside_fraction(water_walls_, grid_.position(static_cast<long>(i)), h);
       water_fill_[i] = inside > 0 ? water_fill_[i] / inside : 0.0;
     }
   }
+  for (const std::size_t b : near_blocks)
+    for (std::size_t i = b * BlockGrid<Dim>::kNodes; i < (b + 1) * BlockGrid<Dim>::kNodes; ++i) {
+      const Index<Dim> node = grid_.node_of(static_cast<long>(i));
+      Index<Dim> water_mirror = node, soil_mirror = node;
+      Vec<Dim> unused = Vec<Dim>::Zero();
+      water_fold_.redirect(water_mirror, unused);
+      fold_.redirect(soil_mirror, unused);
+      if (water_mirror == node || soil_mirror != node) continue;
+      if (const long m = grid_.slot_of(water_mirror); m >= 0) water_fill_[i] = water_fill_[static_cast<std::size_t>(m)];
+    }
 }
 
 // G2P of the soil: v_p, C_p, grad v_p, and the water fill (wall_water_fill()) at the particles.

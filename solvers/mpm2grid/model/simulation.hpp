@@ -179,7 +179,9 @@ class Simulation {
   SimulationSettings<Dim> s_;
   Particles<Dim> water_, soil_;
   BlockGrid<Dim> grid_;
-  WallFold<Dim> fold_;  // the walls' mirror condition in the transfers
+  Walls<Dim> water_walls_;    // the walls as the water sees them (Walls::for_water())
+  WallFold<Dim> fold_;        // the walls' mirror condition in the soil's transfers
+  WallFold<Dim> water_fold_;  // and in the water's
   NodeFields<Dim> water_nodes_, soil_nodes_;
   std::vector<Mat<Dim>> soil_tau_, grad_v_;  // the soil's Kirchhoff stresses and velocity gradients
   std::vector<double> divergence_;           // the water's div v
