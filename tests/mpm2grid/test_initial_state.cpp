@@ -110,9 +110,11 @@ time: {{end: 1 s}}
     }
     std::printf("reservoir, %s floor: the floor layer's mean pressure within %.3f%% of rho g H over 1 s\n", floor,
                 100 * worst);
-    // 1% of rho g H at every step (the walls' mirror keeps the time-averaged floor layer within
-    // 0.3% at 8 cells: tests/mpm2grid/test_buoyancy.cpp; a start at J = 1 would swing it by 100%).
-    EXPECT_LT(worst, 0.01) << floor << " floor";
+    // 0.5% of rho g H at every step (issue 26's bound for a still tank on a friction floor;
+    // measured 0.41% on both floors, the worst step of the first second; the walls' mirror keeps
+    // the time-averaged floor layer within 0.3% at 8 cells: tests/mpm2grid/test_buoyancy.cpp; a
+    // start at J = 1 would swing it by 100%).
+    EXPECT_LT(worst, 0.005) << floor << " floor";
   }
 }
 

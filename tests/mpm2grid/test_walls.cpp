@@ -172,8 +172,9 @@ TEST(Walls, FrictionFloorDeceleratesASlidingBlockAtMuG) {
   for (const double mu : {0.2, 0.5}) {
     const Slide r = slide(WallKind::friction, mu);
     std::printf("friction floor, mu = %.1f: deceleration %.4f m/s^2 (mu g = %.4f)\n", mu, r.deceleration, mu * 9.81);
-    // 2%: the measured 0.1-0.2% is the elastic block's normal force ringing about m g.
-    EXPECT_NEAR(r.deceleration, mu * 9.81, 0.02 * mu * 9.81);
+    // 1% (issue 26's bound): the measured 0.1-0.2% is the elastic block's normal force ringing
+    // about m g.
+    EXPECT_NEAR(r.deceleration, mu * 9.81, 0.01 * mu * 9.81);
   }
   // A slip floor takes nothing along x (the fold keeps the tangential momentum).
   const Slide r = slide(WallKind::slip, 0.5);
