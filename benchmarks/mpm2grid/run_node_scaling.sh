@@ -8,7 +8,7 @@
 #   benchmarks/mpm2grid/run_node_scaling.sh MPM2GRID SCENES_DIR BENCH_DIR OUT_DIR
 #     MPM2GRID    the executable; SCENES_DIR solvers/mpm2grid/scenes; BENCH_DIR benchmarks/mpm2grid
 #     OUT_DIR     one folder per run (run.json, series.csv, summary.json, stderr; no HDF5)
-#   env: RANKS ("1 2 4 8 16"), REPEATS (2), COPIES (16: the ceiling's pinned one-rank copies),
+#   env: RANKS ("1 2 4 8 16"), REPEATS (2), COPIES (the node's cores: the ceiling's pinned copies),
 #        CASES ("ex2 ex2fine ex2consistent 3d"), BIND ("--bind-to core --map-by core")
 #
 # Cases (issue 28's table): ex2 = Table 3.4 example 2 at h = 0.025 m (433k particles, 300 steps,
@@ -24,7 +24,7 @@
 # which wait for each other every step, can reach).
 set -uo pipefail
 bin=$1 scenes=$2 bench=$3 out=$4
-ranks_list=${RANKS:-1 2 4 8 16} repeats=${REPEATS:-2} copies=${COPIES:-16}
+ranks_list=${RANKS:-1 2 4 8 16} repeats=${REPEATS:-2} copies=${COPIES:-$(nproc)}
 cases=${CASES:-ex2 ex2fine ex2consistent 3d} bind=${BIND:---bind-to core --map-by core}
 mkdir -p "$out"
 top=$(echo "$ranks_list" | tr ' ' '\n' | sort -n | tail -1)
@@ -56,7 +56,8 @@ end_time() {
   awk -v t="$t5" -v n="$steps" 'BEGIN { printf "%.6g", t / 5 * n }'
 }
 
-# ceiling NAME ARGS...: COPIES pinned singletons at once.
+# ceiling NAME ARGS...: COPIES pinned singletons at once, each with its own Open MPI session
+# folder (concurrent singletons sharing one clash in MPI-IO).
 ceiling() {
   local name=$1; shift
   local t0=$SECONDS
