@@ -28,14 +28,16 @@ done
   echo "Written by \`benchmarks/mpm2grid/run_all.sh\` from the tables each driver writes beside its CSV"
   echo "and PNG (\`<name>.md\`, \`<name>.csv\`, \`<name>.png\`); rerun one driver and then this script with"
   echo "ONLY=none to refresh this file. Timings are medians over repeats run in turn."
-  # node_scaling needs a many-core node: run_node_scaling.sh there, node_scaling.py anywhere.
-  for b in particle_step table_3_4_scaling message_counts node_scaling martin_moyce dam_convergence drag_stability \
-    soil_stiffness granular_collapse; do
+  # node_scaling needs a many-core node: run_node_scaling.sh there, node_scaling.py anywhere;
+  # comm_model is comm_model.py on node_scaling.csv and message_counts.csv.
+  for b in particle_step table_3_4_scaling message_counts node_scaling comm_model martin_moyce dam_convergence \
+    drag_stability soil_stiffness granular_collapse; do
     if [ -f "$out/$b.md" ]; then
       echo
       sed 's/^## /## /' "$out/$b.md"
       echo
-      if [ -f "$out/$b.png" ]; then echo "Chart: \`$b.png\`; every run: \`$b.csv\`."; else echo "Every run: \`$b.csv\`."; fi
+      if [ -f "$out/$b.png" ]; then echo "Chart: \`$b.png\`; every run: \`$b.csv\`."
+      elif [ -f "$out/$b.csv" ]; then echo "Every run: \`$b.csv\`."; fi
     fi
   done
 } > "$out/README.md"

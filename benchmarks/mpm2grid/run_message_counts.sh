@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The decomposition's traffic of Table 3.4 example 2 (solvers/mpm2grid/scenes/table_3_4_example2.yaml)
-# at 2 to 16 ranks (more ranks than cores: oversubscribed, so only the counts mean anything, not
+# at 2 to 64 ranks (more ranks than cores: oversubscribed, so only the counts mean anything, not
 # the times): halo and migration bytes and point-to-point messages per step (run.json's
 # decomposition block, summed over the ranks), particles per rank. The counts follow from the
 # partition and the particles' motion, not from timing, so they are what the same run sends on
@@ -9,10 +9,10 @@
 # checkpoint: the counts are of the STEPS steps only, and of the flow rather than of the scene at
 # rest when START is some seconds); message_counts.py tabulates.
 #   benchmarks/mpm2grid/run_message_counts.sh [MPM2GRID]     (about 4 min on 2 cores at the defaults)
-#   env: STEPS (20), H (0.025 m), START (0 s), RANKS ("2 4 8 16"), and common.sh's MPM2GRID MPIEXEC OUT NICE KEEP_RUNS
+#   env: STEPS (20), H (0.025 m), START (0 s), RANKS ("2 4 8 16 32 64"), and common.sh's MPM2GRID MPIEXEC OUT NICE KEEP_RUNS
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
-steps=${STEPS:-20} h=${H:-0.025 m} start=${START:-0} ranks_list=${RANKS:-2 4 8 16}
+steps=${STEPS:-20} h=${H:-0.025 m} start=${START:-0} ranks_list=${RANKS:-2 4 8 16 32 64}
 scene=$scenes/table_3_4_example2.yaml
 work_dir message_counts
 rc=$(run_one "$work/probe" 1 "$scene" "grid.spacing=$h" time.max_steps=5 "time.output=1000 s" "time.series=1000 s")
@@ -37,7 +37,7 @@ for ranks in $ranks_list; do
   echo "$ranks ranks: done"
 done
 {
-  echo "## Table 3.4 example 2: halo and migration traffic at 2-16 ranks (run_message_counts.sh)"
+  echo "## Table 3.4 example 2: halo and migration traffic at ${ranks_list// /, } ranks (run_message_counts.sh)"
   echo
   provenance "$run/run.json"
   echo
