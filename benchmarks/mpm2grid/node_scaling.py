@@ -109,6 +109,14 @@ def report(rows, machines, png):
                            f"{halo / 1e6:.2f} | {msgs:.0f} | {reb:.0f} ({bal:.2f}) |")
                 if case == "ex2":
                     curves.setdefault(lease, []).append((p, s))
+                    fast = min(mine_p, key=lambda r: num(r, "step_s"))
+                    steps_p = num(fast, "steps")
+                    parts = curves.setdefault(f"{lease} breakdown", {})
+                    parts[p] = [phase_sum(fast, COMPUTE, "mean") / steps_p,
+                                phase_sum(fast, STEP_PHASES, "wait") / steps_p,
+                                (phase_sum(fast, COMM, "mean") - phase_sum(fast, COMM, "wait")) / steps_p,
+                                (0.0 if math.isnan(num(fast, "ph_balance_mean")) else num(fast, "ph_balance_mean"))
+                                / steps_p]
             copies = [num(r, "step_s") for r in mine if r["case"] == case and r["kind"] == "copy"
                       and r["status"] == "completed"]
             if copies:
@@ -155,10 +163,14 @@ def report(rows, machines, png):
 
 
 def chart(curves, png):
-    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    """Left: the speedup of example 2 at h = 0.025 m per lease, with the node's ceilings at 16 ranks.
+    Right: its step on the faster run of each rank count, in core-milliseconds (ranks x the mean
+    rank's seconds), split into compute, waiting in MPI, the communication phases' own work and
+    balancing: flat bars would be perfect scaling."""
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4.8))
     top = 1
     for label, points in curves.items():
-        if label.endswith("ceiling"):
+        if label.endswith("ceiling") or label.endswith("breakdown"):
             continue
         points.sort()
         by_p = {}
@@ -181,8 +193,27 @@ def chart(curves, png):
     ax.set_title("mpm2grid strong scaling on one 16-core node")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
+    breakdowns = [(k, v) for k, v in curves.items() if k.endswith("breakdown")]
+    names = ["compute", "waiting in MPI", "communication work", "balancing"]
+    colours = ["tab:blue", "tab:red", "tab:orange", "tab:gray"]
+    width = 0.8 / max(1, len(breakdowns))
+    for j, (label, parts) in enumerate(breakdowns):
+        ps = sorted(parts)
+        x = [i + j * width for i in range(len(ps))]
+        bottom = [0.0] * len(ps)
+        for k, name in enumerate(names):
+            values = [parts[p][k] * p * 1e3 for p in ps]
+            bx.bar(x, values, width, bottom=bottom, color=colours[k], alpha=1.0 - 0.35 * j,
+                   label=f"{name} ({label.replace(' breakdown', '')})")
+            bottom = [b + v for b, v in zip(bottom, values)]
+        bx.set_xticks([i + 0.4 - width / 2 for i in range(len(ps))], [str(p) for p in ps])
+    bx.set_xlabel("ranks")
+    bx.set_ylabel("core-milliseconds per step (ranks x mean rank)")
+    bx.set_title("example 2, h = 0.025 m: where the time goes")
+    bx.legend(fontsize=7, ncol=2)
+    bx.grid(True, axis="y", alpha=0.3)
     fig.tight_layout()
-    fig.savefig(png, dpi=120)
+    fig.savefig(png, dpi=110)
 
 
 def main(argv):
