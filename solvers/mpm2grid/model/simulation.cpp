@@ -137,6 +137,7 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::spread(const Particles<Dim>& P, const 
 template <int Dim>
 void Simulation<Dim>::particles_to_grids(double dt) {
   const double fold_dt = s_.drag == DragScheme::explicit_euler ? 0.0 : dt;
+  if (s_.water.flip > 0) water_velocities_before();
   {
     auto timed = phase(StepPhase::p2g_water);
     spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt, .walls = &water_fold_, .gravity = s_.gravity},
@@ -314,6 +315,31 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mixture_volume_rates(double dt) {
       });
 }
 
+// With a FLIP share: the water's node velocities before the step's forces, from its particles'
+// mass and APIC momentum alone, complete on owned and ghost nodes.
+template <int Dim>
+void Simulation<Dim>::water_velocities_before() {
+  {
+    auto timed = phase(StepPhase::p2g_water);
+    water_before_.reset(grid_.nodes());
+    spread(water_, {.walls = &water_fold_}, water_before_);
+  }
+  if (dd_) {
+    auto timed = phase(StepPhase::halo_sum);
+    dd_->sum_to_owners(water_before_);
+  }
+  {
+    auto timed = phase(StepPhase::p2g_water);
+    for (std::size_t i = 0; i < grid_.nodes(); ++i)
+      water_before_.velocity[i] = water_before_.mass[i] > 0 ? Vec<Dim>(water_before_.momentum[i] / water_before_.mass[i])
+                                                            : Vec<Dim>(Vec<Dim>::Zero());
+  }
+  if (dd_) {
+    auto timed = phase(StepPhase::halo_copy);
+    dd_->copy_to_ghosts(water_before_, water_before_);
+  }
+}
+
 template <int Dim>
 void Simulation<Dim>::distribute() {
   if (dd_) dd_->balance(steps_, water_, soil_, true);
@@ -323,14 +349,34 @@ void Simulation<Dim>::distribute() {
 // update samples the grid itself).
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
+  if (s_.water.flip > 0) flip_probe_.v = water_.v;  // the particles' velocities before the step
   if (s_.mixture) {
     grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
                                                    [](std::size_t) {});
+    if (s_.water.flip > 0) water_flip();
     return;
   }
   divergence_.resize(water_.size());
   grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
                                                        [&](std::size_t p, double div) { divergence_[p] = div; });
+  if (s_.water.flip > 0) water_flip();
+}
+
+// v_p = flip (v_p before + sum_i w_ip (v_i - v_i before)) + (1 - flip) v_p APIC; C_p stays APIC's.
+template <int Dim>
+void Simulation<Dim>::water_flip() {
+  std::vector<Vec<Dim>> before = std::move(flip_probe_.v);
+  for (std::size_t i = 0; i < grid_.nodes(); ++i)
+    water_before_.velocity[i] = water_nodes_.mass[i] > 0 ? Vec<Dim>(water_nodes_.velocity[i] - water_before_.velocity[i])
+                                                         : Vec<Dim>(Vec<Dim>::Zero());
+  flip_probe_.x = water_.x;
+  flip_probe_.v.resize(water_.size());
+  flip_probe_.C.resize(water_.size());
+  grid_to_particles_each<VelocityGradient::none>(flip_probe_, grid_, water_before_, nullptr, nullptr, &water_fold_,
+                                                 [](std::size_t) {});
+  const double a = s_.water.flip;
+  for (std::size_t p = 0; p < water_.size(); ++p)
+    water_.v[p] = a * (before[p] + flip_probe_.v[p]) + (1 - a) * water_.v[p];
 }
 
 // The water grid's masses for the saturation (docs/methods/mpm2grid.md, "Continuum model"), each

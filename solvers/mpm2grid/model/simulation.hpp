@@ -32,6 +32,12 @@ namespace suite::mpm2grid {
 struct WaterSettings {
   double density = 1000;  // kg/m^3
   WeaklyCompressibleWater eos;
+  // The FLIP share of the water's G2P, in [0, 1]: v_p = flip (v_p + the grid's change of velocity
+  // at x_p) + (1 - flip) (the grid's new velocity at x_p); 0 is APIC alone. APIC's G2P keeps only
+  // the grid's affine part of each particle's velocity every step, so it damps the flow by a share
+  // per step, not per second: at a few cells across a flow the results depend on the step count
+  // (docs/mpm2grid.md, "Water: FLIP share").
+  double flip = 0;
 };
 
 struct SoilSettings {
@@ -168,6 +174,8 @@ class Simulation {
   void solid_fractions();
   void mixture_volume_rates(double dt);
   void water_velocities();
+  void water_velocities_before();
+  void water_flip();
   void wall_water_fill();
   void soil_velocities();
   void record_homes(const Particles<Dim>& P);
@@ -183,6 +191,11 @@ class Simulation {
   WallFold<Dim> fold_;        // the walls' mirror condition in the soil's transfers
   WallFold<Dim> water_fold_;  // and in the water's
   NodeFields<Dim> water_nodes_, soil_nodes_;
+  // With a FLIP share: the water's node velocities from its particles before the step's forces
+  // (mass and momentum spread alone), and a probe at the water's positions that samples the
+  // grid's change of velocity.
+  NodeFields<Dim> water_before_;
+  Particles<Dim> flip_probe_;
   std::vector<Mat<Dim>> soil_tau_, grad_v_;  // the soil's Kirchhoff stresses and velocity gradients
   std::vector<double> divergence_;           // the water's div v
   std::vector<double> water_fill_;           // m_w,i / I_i per node slot, for the saturation

@@ -152,6 +152,7 @@ Scene<Dim> read_scene(const config::Config& cfg) {
     sim.water.density = w->quantity("density", "kg/m^3", 1000.0, Range::positive());
     sim.water.eos.bulk_modulus = w->quantity("bulk_modulus", "Pa", Range::positive());
     sim.water.eos.gamma = w->number("gamma", 7.0, Range::positive());
+    sim.water.flip = w->number("flip", 0.0, Range::between(0.0, 1.0));
     if (w->has("hydrostatic_surface")) sc.hydrostatic_surface = w->quantity("hydrostatic_surface", "m");
     sc.water_regions = read_regions(*w, Dim, lo[1]);
     for (const auto& r : sc.water_regions) check_inside<Dim>(*w, r, sim.walls.lo, sim.walls.hi, "water");
