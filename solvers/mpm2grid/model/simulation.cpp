@@ -137,7 +137,8 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::spread(const Particles<Dim>& P, const 
 template <int Dim>
 void Simulation<Dim>::particles_to_grids(double dt) {
   const double fold_dt = s_.drag == DragScheme::explicit_euler ? 0.0 : dt;
-  if (s_.water.flip > 0) water_velocities_before();
+  if (s_.water.flip > 0) velocities_before(water_, water_fold_, water_before_);
+  if (s_.soil.flip > 0) velocities_before(soil_, fold_, soil_before_);
   {
     auto timed = phase(StepPhase::p2g_water);
     spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt, .walls = &water_fold_, .gravity = s_.gravity},
@@ -315,28 +316,28 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mixture_volume_rates(double dt) {
       });
 }
 
-// With a FLIP share: the water's node velocities before the step's forces, from its particles'
+// With a FLIP share: a species' node velocities before the step's forces, from its particles'
 // mass and APIC momentum alone, complete on owned and ghost nodes.
 template <int Dim>
-void Simulation<Dim>::water_velocities_before() {
+void Simulation<Dim>::velocities_before(const Particles<Dim>& P, const WallFold<Dim>& walls,
+                                        NodeFields<Dim>& before) {
   {
-    auto timed = phase(StepPhase::p2g_water);
-    water_before_.reset(grid_.nodes());
-    spread(water_, {.walls = &water_fold_}, water_before_);
+    auto timed = phase(&P == &water_ ? StepPhase::p2g_water : StepPhase::p2g_soil);
+    before.reset(grid_.nodes());
+    spread(P, {.walls = &walls}, before);
   }
   if (dd_) {
     auto timed = phase(StepPhase::halo_sum);
-    dd_->sum_to_owners(water_before_);
+    dd_->sum_to_owners(before);
   }
   {
-    auto timed = phase(StepPhase::p2g_water);
+    auto timed = phase(&P == &water_ ? StepPhase::p2g_water : StepPhase::p2g_soil);
     for (std::size_t i = 0; i < grid_.nodes(); ++i)
-      water_before_.velocity[i] = water_before_.mass[i] > 0 ? Vec<Dim>(water_before_.momentum[i] / water_before_.mass[i])
-                                                            : Vec<Dim>(Vec<Dim>::Zero());
+      before.velocity[i] = before.mass[i] > 0 ? Vec<Dim>(before.momentum[i] / before.mass[i]) : Vec<Dim>(Vec<Dim>::Zero());
   }
   if (dd_) {
     auto timed = phase(StepPhase::halo_copy);
-    dd_->copy_to_ghosts(water_before_, water_before_);
+    dd_->copy_to_ghosts(before, before);
   }
 }
 
@@ -349,34 +350,33 @@ void Simulation<Dim>::distribute() {
 // update samples the grid itself).
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
-  if (s_.water.flip > 0) flip_probe_.v = water_.v;  // the particles' velocities before the step
+  if (s_.water.flip > 0) v_before_ = water_.v;  // the particles' velocities before the step
   if (s_.mixture) {
     grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
                                                    [](std::size_t) {});
-    if (s_.water.flip > 0) water_flip();
-    return;
+  } else {
+    divergence_.resize(water_.size());
+    grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
+                                                         [&](std::size_t p, double div) { divergence_[p] = div; });
   }
-  divergence_.resize(water_.size());
-  grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
-                                                       [&](std::size_t p, double div) { divergence_[p] = div; });
-  if (s_.water.flip > 0) water_flip();
+  if (s_.water.flip > 0) blend_flip(water_, water_nodes_, water_before_, water_fold_, s_.water.flip);
 }
 
-// v_p = flip (v_p before + sum_i w_ip (v_i - v_i before)) + (1 - flip) v_p APIC; C_p stays APIC's.
+// v_p = share (v_p before + sum_i w_ip (v_i - v_i before)) + (1 - share) v_p APIC, with the
+// velocities before in v_before_; C_p stays APIC's. `before` is left holding the change.
 template <int Dim>
-void Simulation<Dim>::water_flip() {
-  std::vector<Vec<Dim>> before = std::move(flip_probe_.v);
+void Simulation<Dim>::blend_flip(Particles<Dim>& P, const NodeFields<Dim>& nodes, NodeFields<Dim>& before,
+                                 const WallFold<Dim>& walls, double share) {
   for (std::size_t i = 0; i < grid_.nodes(); ++i)
-    water_before_.velocity[i] = water_nodes_.mass[i] > 0 ? Vec<Dim>(water_nodes_.velocity[i] - water_before_.velocity[i])
-                                                         : Vec<Dim>(Vec<Dim>::Zero());
-  flip_probe_.x = water_.x;
-  flip_probe_.v.resize(water_.size());
-  flip_probe_.C.resize(water_.size());
-  grid_to_particles_each<VelocityGradient::none>(flip_probe_, grid_, water_before_, nullptr, nullptr, &water_fold_,
+    before.velocity[i] =
+        nodes.mass[i] > 0 ? Vec<Dim>(nodes.velocity[i] - before.velocity[i]) : Vec<Dim>(Vec<Dim>::Zero());
+  flip_probe_.x = P.x;
+  flip_probe_.v.resize(P.size());
+  flip_probe_.C.resize(P.size());
+  grid_to_particles_each<VelocityGradient::none>(flip_probe_, grid_, before, nullptr, nullptr, &walls,
                                                  [](std::size_t) {});
-  const double a = s_.water.flip;
-  for (std::size_t p = 0; p < water_.size(); ++p)
-    water_.v[p] = a * (before[p] + flip_probe_.v[p]) + (1 - a) * water_.v[p];
+  for (std::size_t p = 0; p < P.size(); ++p)
+    P.v[p] = share * (v_before_[p] + flip_probe_.v[p]) + (1 - share) * P.v[p];
 }
 
 // The water grid's masses for the saturation (docs/methods/mpm2grid.md, "Continuum model"), each
@@ -420,7 +420,9 @@ void Simulation<Dim>::wall_water_fill() {
 // the return mapping's cohesion is the step's own.
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
+  if (s_.soil.flip > 0) v_before_ = soil_.v;
   grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_fill_, &soil_.saturation, &fold_);
+  if (s_.soil.flip > 0) blend_flip(soil_, soil_nodes_, soil_before_, fold_, s_.soil.flip);
 }
 
 // A species' home blocks before the move (home_before_), and after it which particles it took to

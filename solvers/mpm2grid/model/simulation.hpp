@@ -45,6 +45,7 @@ struct SoilSettings {
   double porosity = 0.4;       // n
   double conductivity = 1e-4;  // hydraulic conductivity k, m/s
   HenckyDruckerPrager material;
+  double flip = 0;             // the FLIP share of the soil's G2P (WaterSettings::flip); grad v stays APIC's
 
   // The drag coefficient c_E = n^2 rho_w g0 / k (kg m^-3 s^-1). g0 is standard gravity, not the
   // scene's: a hydraulic conductivity is measured on Earth (k = kappa rho_w g0 / mu_w), and a
@@ -174,8 +175,9 @@ class Simulation {
   void solid_fractions();
   void mixture_volume_rates(double dt);
   void water_velocities();
-  void water_velocities_before();
-  void water_flip();
+  void velocities_before(const Particles<Dim>& P, const WallFold<Dim>& walls, NodeFields<Dim>& before);
+  void blend_flip(Particles<Dim>& P, const NodeFields<Dim>& nodes, NodeFields<Dim>& before, const WallFold<Dim>& walls,
+                  double share);
   void wall_water_fill();
   void soil_velocities();
   void record_homes(const Particles<Dim>& P);
@@ -191,10 +193,11 @@ class Simulation {
   WallFold<Dim> fold_;        // the walls' mirror condition in the soil's transfers
   WallFold<Dim> water_fold_;  // and in the water's
   NodeFields<Dim> water_nodes_, soil_nodes_;
-  // With a FLIP share: the water's node velocities from its particles before the step's forces
-  // (mass and momentum spread alone), and a probe at the water's positions that samples the
-  // grid's change of velocity.
-  NodeFields<Dim> water_before_;
+  // With a FLIP share: each species' node velocities from its particles before the step's forces
+  // (mass and momentum spread alone), the particles' velocities before the step, and a probe at
+  // the particles' positions that samples the grid's change of velocity.
+  NodeFields<Dim> water_before_, soil_before_;
+  std::vector<Vec<Dim>> v_before_;
   Particles<Dim> flip_probe_;
   std::vector<Mat<Dim>> soil_tau_, grad_v_;  // the soil's Kirchhoff stresses and velocity gradients
   std::vector<double> divergence_;           // the water's div v

@@ -89,10 +89,12 @@ MemoryEstimate estimate_memory(const Scene<Dim>& sc) {
   e.nodes = (e.soil_particles + e.water_particles) * cells_per_particle * std::pow(2.0, Dim);
   e.bytes =
       (e.soil_particles + e.water_particles) * kParticleStateCopies * state_bytes<Dim>() + e.nodes * kNodeBytes<Dim>;
-  // The water's FLIP share: its node fields before the forces, and per water particle a probe's
+  // A FLIP share: the species' node fields before the forces, and per particle a probe's
   // position, velocity and C and the velocity before the step.
   if (sc.simulation.water.flip > 0)
     e.bytes += e.nodes / 2 * kNodeBytes<Dim> / 2 + e.water_particles * (3 * Dim + Dim * Dim) * sizeof(double);
+  if (sc.simulation.soil.flip > 0)
+    e.bytes += e.nodes / 2 * kNodeBytes<Dim> / 2 + e.soil_particles * (3 * Dim + Dim * Dim) * sizeof(double);
   e.bytes_per_rank = kRankBytes;
   return e;
 }

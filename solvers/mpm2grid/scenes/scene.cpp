@@ -158,6 +158,7 @@ Scene<Dim> read_scene(const config::Config& cfg) {
     for (const auto& r : sc.water_regions) check_inside<Dim>(*w, r, sim.walls.lo, sim.walls.hi, "water");
   }
   if (const auto s = root.optional_section("soil")) {
+    sim.soil.flip = s->number("flip", 0.0, Range::between(0.0, 1.0));
     sim.soil.density = s->quantity("density", "kg/m^3", Range::positive());
     const double young = s->quantity("young", "Pa", Range::positive());
     const double poisson = s->number("poisson", 0.3, Range{-1.0, 0.5, true, true});
