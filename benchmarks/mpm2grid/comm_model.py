@@ -33,9 +33,11 @@ import csv
 import math
 import statistics
 import sys
+from pathlib import Path
 
-COMPUTE = ["grid", "stresses", "p2g water", "p2g soil", "grid solve", "boundary", "g2p water", "g2p soil", "inlet"]
-COMM = ["halo plan", "halo sum", "halo copy", "outflow", "migrate"]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from mpm_metrics import COMM_PHASES as COMM, COMPUTE_PHASES as COMPUTE, STEP_PHASES, phase_sum  # noqa: E402
+
 EXPECTED_MAX = {1: 0.0, 2: 0.5642, 4: 1.0294, 8: 1.4236, 16: 1.7660, 32: 2.0697, 64: 2.3318}
 NETWORKS = {"InfiniBand EDR": (1.5e-6, 10e9), "25 Gb Ethernet": (20e-6, 2.5e9)}
 REDUCTIONS = 6
@@ -47,7 +49,7 @@ def num(row, key):
 
 
 def per_step(row, phases, stat):
-    return sum(num(row, f"ph_{p.replace(' ', '_').replace('-', '_')}_{stat}") for p in phases) / num(row, "steps")
+    return phase_sum(row, phases, stat) / num(row, "steps")
 
 
 def main(node_csv, counts_csv):
@@ -68,7 +70,7 @@ def main(node_csv, counts_csv):
             if p == 1:
                 rs = [one]  # the fastest one-rank run, T(1)
             comp = statistics.median(per_step(r, COMPUTE, "mean") for r in rs)
-            wait = statistics.median(sum(num(r, k) for k in r if k.endswith("_wait")) / num(r, "steps") for r in rs)
+            wait = statistics.median(per_step(r, STEP_PHASES, "wait") for r in rs)
             other = statistics.median(per_step(r, COMM, "mean") - per_step(r, COMM, "wait") for r in rs)
             step = statistics.median(num(r, "step_s") / num(r, "steps") for r in rs)
             measured[p] = dict(s=comp * p / c1, g=wait / comp if p > 1 else 0.0, other=other, step=step)

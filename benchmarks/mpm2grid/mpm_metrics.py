@@ -38,10 +38,20 @@ COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "parti
 STEP_PHASES = ["balance", "grid", "halo plan", "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
                "boundary", "halo copy", "g2p water", "g2p soil", "outflow", "inlet", "migrate"]
 CHECKS = ["dt limit", "blow-up check"]
+# The step phases without MPI, and the communication phases (whose time less their wait is their
+# own work): node_scaling.py's and comm_model.py's breakdown.
+COMPUTE_PHASES = ["grid", "stresses", "p2g water", "p2g soil", "grid solve", "boundary", "g2p water", "g2p soil",
+                  "inlet"]
+COMM_PHASES = ["halo plan", "halo sum", "halo copy", "outflow", "migrate"]
 
 
 def slug(phase):
     return phase.replace(" ", "_").replace("-", "_")
+
+
+def phase_sum(row, phases, stat):
+    """The sum over `phases` of a row's ph_<phase>_<stat> column (mean, max or wait), empty as 0."""
+    return sum(float(row.get(f"ph_{slug(p)}_{stat}") or 0.0) for p in phases)
 
 
 for _p in STEP_PHASES + CHECKS:

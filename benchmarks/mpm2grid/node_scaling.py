@@ -30,13 +30,12 @@ from pathlib import Path
 import matplotlib
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mpm_metrics import COLUMNS, STEP_PHASES, metrics, slug  # noqa: E402
+from mpm_metrics import (COLUMNS, COMM_PHASES as COMM, COMPUTE_PHASES as COMPUTE, STEP_PHASES,  # noqa: E402
+                         metrics, phase_sum)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COMPUTE = ["grid", "stresses", "p2g water", "p2g soil", "grid solve", "boundary", "g2p water", "g2p soil", "inlet"]
-COMM = ["halo plan", "halo sum", "halo copy", "outflow", "migrate"]
 CASES = {"ex2": "Table 3.4 example 2, h = 0.025 m", "ex2fine": "example 2, h = 0.0125 m",
          "ex2consistent": "example 2, h = 0.025 m, consistent drag", "3d": "two_species_3d, h = 5 mm"}
 RUN = re.compile(r"^(?P<case>[a-z0-9]+)-r(?P<ranks>\d+)(-(?P<mode>equal|measured))?-(?P<repeat>\d+)$")
@@ -62,11 +61,6 @@ def collect(label, runs_dir):
 def num(row, key):
     v = row.get(key, "")
     return float(v) if v not in ("", None) else math.nan
-
-
-def phase_sum(row, phases, stat):
-    return sum(0.0 if math.isnan(num(row, f"ph_{slug(p)}_{stat}")) else num(row, f"ph_{slug(p)}_{stat}")
-               for p in phases)
 
 
 def report(rows, machines, png):
@@ -115,8 +109,7 @@ def report(rows, machines, png):
                     parts[p] = [phase_sum(fast, COMPUTE, "mean") / steps_p,
                                 phase_sum(fast, STEP_PHASES, "wait") / steps_p,
                                 (phase_sum(fast, COMM, "mean") - phase_sum(fast, COMM, "wait")) / steps_p,
-                                (0.0 if math.isnan(num(fast, "ph_balance_mean")) else num(fast, "ph_balance_mean"))
-                                / steps_p]
+                                phase_sum(fast, ["balance"], "mean") / steps_p]
             copies = [num(r, "step_s") for r in mine if r["case"] == case and r["kind"] == "copy"
                       and r["status"] == "completed"]
             if copies:

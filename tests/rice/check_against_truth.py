@@ -7,16 +7,12 @@ is unmatched or not ok, when a cut grain is not flagged, when a kernel area of g
 more than KERNEL_TOLERANCE, or when the mean gel/kernel ratio does not rise from grade 2 to 6.
     check_against_truth.py RENDER_DIR MEASURE_DIR KERNEL_TOLERANCE
 """
-import csv
 import math
 import sys
 from collections import defaultdict
 from pathlib import Path
 
-
-def table(path):
-    lines = [l for l in Path(path).read_text().splitlines() if not l.startswith("#")]
-    return list(csv.DictReader(lines))
+from rice_tables import table
 
 
 render, measure, tolerance = Path(sys.argv[1]), Path(sys.argv[2]), float(sys.argv[3])

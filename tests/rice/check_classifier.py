@@ -13,9 +13,8 @@ import sys
 from collections import Counter
 from pathlib import Path
 
+from rice_tables import class_accuracy, table
 
-def table(path):
-    return list(csv.DictReader(l for l in Path(path).read_text().splitlines() if not l.startswith("#")))
 
 
 def matrix(path):
@@ -49,23 +48,12 @@ samples = Counter(r["set"] for r in table(model / "samples.csv"))
 check(samples["excluded"] == g["excluded_flagged"] and samples["test"] == g["test"], f"samples.csv sets {dict(samples)}")
 check((model / "confusion.png").stat().st_size > 1000, "confusion.png missing")
 
-grade_of = {r["image"]: int(r["grade"]) for r in table(held_out / "truth.csv")}
-class_of = lambda grade: names[(grade - 2) // 2]
 rows = table(classified / "classes.csv")
 ok = [r for r in rows if r["status"] == "ok"]
 check(any(r["status"] == "flagged" for r in rows), "the held-out set's touching and cut grains are not flagged")
-right, per_class = Counter(), Counter()
-for r in ok:
-    truth = class_of(grade_of[Path(r["image"]).name])
-    per_class[truth] += 1
-    right[truth] += r["class"] == truth
-    if r["class"] != truth:
-        print(f"wrong: {r['image']} grain {r['grain']}: {r['class']} (share {r['share']}), truth {truth}")
 summary = json.loads((classified / "classify.json").read_text())
 check(sum(summary["counts"].values()) == len(ok), "classify.json counts do not sum to the ok grains")
-accuracy = sum(right.values()) / len(ok) if ok else 0
-for c in names:
-    print(f"held-out {c:6s}: {right[c]}/{per_class[c]}")
+accuracy = class_accuracy(ok, held_out / "truth.csv", names, "held-out")
 print(f"held-out accuracy {accuracy:.1%} of {len(ok)} ok grains (minimum {minimum:.0%}); training: test split "
       f"{e['test']['accuracy']:.1%} of {g['test']}, {cv['folds']}-fold {cv['pooled']['accuracy']:.1%} of {g['used']}")
 check(accuracy > minimum, f"held-out accuracy {accuracy:.1%} not above {minimum:.0%}")

@@ -9,10 +9,8 @@
 Prints the largest score difference and the accuracy per class and overall.
     check_onnx.py NET_DIR CLASSIFY_DIR RENDER_DIR PIXEL_SIZE_MM MIN_ACCURACY
 """
-import csv
 import json
 import sys
-from collections import Counter
 from pathlib import Path
 
 import matplotlib.image
@@ -23,9 +21,8 @@ try:
 except ImportError:
     sys.exit(f"{sys.argv[0]}: needs Debian's python3-onnx (./suite setup, or apt-get install python3-onnx)")
 
+from rice_tables import class_accuracy, table  # noqa: E402
 
-def table(path):
-    return list(csv.DictReader(l for l in Path(path).read_text().splitlines() if not l.startswith("#")))
 
 
 def run_numpy(model, x):
@@ -90,22 +87,11 @@ for s, c in zip(scores, graded):
 check(worst <= 1e-5, f"OpenCV dnn and numpy differ by {worst:.2e} (more than 1e-5)")
 print(f"largest |OpenCV dnn - numpy| over {len(scores)} grains: {worst:.2e}")
 
-grade_of = {r["image"]: int(r["grade"]) for r in table(rendered / "truth.csv")}
-class_of = lambda grade: names[(grade - 2) // 2]
 ok = [c for c in classes if c["status"] == "ok"]
-right, per_class = Counter(), Counter()
-for c in ok:
-    truth = class_of(grade_of[Path(c["image"]).name])
-    per_class[truth] += 1
-    right[truth] += c["class"] == truth
-    if c["class"] != truth:
-        print(f"wrong: {c['image']} grain {c['grain']}: {c['class']} (score {c['share']}), truth {truth}")
 summary = json.loads((classified / "classify.json").read_text())
 check(summary["model_type"] == "onnx", f"classify.json model_type {summary['model_type']}")
 check(sum(summary["counts"].values()) == len(ok), "classify.json counts do not sum to the ok grains")
-accuracy = sum(right.values()) / len(ok) if ok else 0
-for k in names:
-    print(f"onnx {k:6s}: {right[k]}/{per_class[k]}")
+accuracy = class_accuracy(ok, rendered / "truth.csv", names, "onnx", share_name="score")
 print(f"onnx accuracy {accuracy:.1%} of {len(ok)} ok grains (minimum {minimum:.0%})")
 check(accuracy > minimum, f"accuracy {accuracy:.1%} not above {minimum:.0%}")
 for f in failures:
