@@ -8,8 +8,10 @@
 # means the same on a fast machine as on a slow one.
 #   restart_is_bitwise.sh WORK_DIR EXE [STOP_FILE [SCENE_FILE OVERRIDES...]]
 # LAUNCH (environment), if set, prefixes every run, e.g. "mpiexec -n 2": the same on 2 ranks.
+# STOPS (environment), if set, gives the two stops' step counts (default "137 300").
 set -euo pipefail
 work=$1 exe=$2 stop_file=${3:-stop}
+read -r first second <<< "${STOPS:-137 300}"
 if [ $# -gt 3 ]; then
   scene=("${@:4}" checkpoint.every_steps=100000)
 else
@@ -18,13 +20,13 @@ fi
 rm -rf "$work" && mkdir -p "$work"
 same() { "$(dirname "$0")/same_outputs.sh" "$1" "$2"; }
 ${LAUNCH:-} "$exe" --out "$work/straight" "${scene[@]}" --log-level warn
-${LAUNCH:-} "$exe" --out "$work/pieces" "${scene[@]}" --log-level warn time.max_steps=137
-grep -q '"status": "stopped: time.max_steps = 137"' "$work/pieces/run.json"
-${LAUNCH:-} "$exe" --out "$work/pieces" "${scene[@]}" --log-level warn --restart latest time.max_steps=300
+${LAUNCH:-} "$exe" --out "$work/pieces" "${scene[@]}" --log-level warn time.max_steps=$first
+grep -q "\"status\": \"stopped: time.max_steps = $first\"" "$work/pieces/run.json"
+${LAUNCH:-} "$exe" --out "$work/pieces" "${scene[@]}" --log-level warn --restart latest time.max_steps=$second
 ${LAUNCH:-} "$exe" --out "$work/pieces" "${scene[@]}" --log-level warn --restart latest
 grep -q '"status": "completed"' "$work/pieces/run.json"
 same "$work/straight" "$work/pieces"
-echo "restarted twice (steps 137, 437): outputs identical to the uninterrupted run"
+echo "restarted twice (steps $first, $((first + second))): outputs identical to the uninterrupted run"
 
 [ "$stop_file" = none ] && exit 0
 # A stop request mid-run: the `stop` file in the output folder (a user's or a script's request;

@@ -26,37 +26,18 @@
 #include <vector>
 
 #include "core/errors.hpp"
-#include "core/petsc/petsc_session.hpp"
 #include "solvers/mpm2grid/coupling/consistent_drag.hpp"
 #include "solvers/mpm2grid/coupling/drag_solve.hpp"
 #include "solvers/mpm2grid/model/simulation.hpp"
 #include "solvers/mpm2grid/transfer/apic.hpp"
+#include "tests/support/petsc_environment.hpp"
 
 namespace suite::mpm2grid {
 namespace {
 
-// One PETSc session for the whole program (PETSc is initialised once per process), on a
-// duplicate of the world so the tests' messages stay apart from anyone else's.
-class PetscEnvironment : public ::testing::Environment {
- public:
-  void SetUp() override {
-    comm_ = std::make_unique<mpi::Comm>(mpi::Comm(MPI_COMM_WORLD).dup());
-    // "stop_" gives a solver that may take one iteration only (test e).
-    session_ = std::make_unique<PetscSession>(*comm_, "-drag_ksp_rtol 1e-14 -stop_ksp_max_it 1");
-  }
-  void TearDown() override {
-    session_.reset();
-    comm_.reset();
-  }
-  const mpi::Comm& comm() const { return *comm_; }
-
- private:
-  std::unique_ptr<mpi::Comm> comm_;
-  std::unique_ptr<PetscSession> session_;
-};
-
-PetscEnvironment* const environment =
-    static_cast<PetscEnvironment*>(::testing::AddGlobalTestEnvironment(new PetscEnvironment));
+// "stop_" gives a solver that may take one iteration only (test e).
+testing::PetscEnvironment* const environment =
+    testing::add_petsc_environment("-drag_ksp_rtol 1e-14 -stop_ksp_max_it 1");
 
 template <class T>
 class ConsistentDragTest : public ::testing::Test {};

@@ -17,38 +17,23 @@
 #include <numbers>
 
 #include "solvers/mpm2grid/model/simulation.hpp"
+#include "tests/mpm2grid/vibrating_bar.hpp"
 
 namespace suite::mpm2grid {
 namespace {
 
 // The largest |v_cm - closed form| over one period, relative to v0, at `cells` cells per bar.
 double bar_error(int cells) {
-  const double L = 1.0, h = L / cells, rho = 1000;
-  SimulationSettings<2> s;
-  s.h = h;
-  s.walls.lo = Vec<2>(0, 0), s.walls.hi = Vec<2>(2 * L, 4 * h);
-  s.walls.kind[0] = {WallKind::sticky, WallKind::slip};
-  s.walls.kind[1] = {WallKind::slip, WallKind::slip};
-  s.soil.density = rho;
-  s.soil.material = HenckyDruckerPrager::from_young(1e6, 0.0, 0.5, 1e9, false);
-  s.buoyancy = false;
-  s.cfl = 0.4;
-  s.dt_max = 1;
-  const double c = std::sqrt(1e6 / rho);  // E = 1 MPa, nu = 0
-  const double omega = std::numbers::pi / (2 * L) * c, v0 = 1e-4 * c;
-  Simulation<2> sim(s);
-  const double spacing = h / 2, volume = spacing * spacing;
-  for (int i = 0; i < 2 * cells; ++i)
-    for (int j = 0; j < 8; ++j) {
-      const Vec<2> x((i + 0.5) * spacing, (j + 0.5) * spacing);
-      sim.soil().add(x, Vec<2>(v0 * std::sin(std::numbers::pi * x[0] / (2 * L)), 0), rho * volume, volume);
-    }
-  const double period = 2 * std::numbers::pi / omega;
+  using namespace vibrating_bar;
+  Simulation<2> sim(settings(cells));
+  const double v0 = 1e-4 * kC;
+  seed(sim.soil(), cells, v0);
+  const double period = 2 * std::numbers::pi / kOmega;
   double worst = 0;
   while (sim.time() < period) {
     sim.step(std::min(sim.stable_dt().dt, period - sim.time()));
     const double v_cm = sim.soil().momentum()[0] / sim.soil().total_mass();
-    worst = std::max(worst, std::abs(v_cm - 2 / std::numbers::pi * v0 * std::cos(omega * sim.time())) / v0);
+    worst = std::max(worst, std::abs(v_cm - 2 / std::numbers::pi * v0 * std::cos(kOmega * sim.time())) / v0);
   }
   return worst;
 }

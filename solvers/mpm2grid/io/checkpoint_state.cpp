@@ -1,5 +1,6 @@
 #include "solvers/mpm2grid/io/checkpoint_state.hpp"
 
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -63,7 +64,8 @@ void read_species(checkpoint::Reader& r, const std::string& s, Particles<Dim>& P
 
 }  // namespace
 
-// The run's scalars, in this order, then the outflow momentum (Dim values).
+// The run's scalars, in this order, then the outflow momentum (Dim values), then the implicit
+// forces' dt cap (absent from the checkpoints of builds before it: no cap).
 constexpr std::size_t kScalars = 14;
 
 template <int Dim>
@@ -81,6 +83,7 @@ void write_state(checkpoint::Writer& w, const Simulation<Dim>& sim, const RunPro
                               q.peak_time,          progress.initial_soil_volume,
                               inlet.length,         inlet.mass};
   for (int d = 0; d < Dim; ++d) scalars.push_back(o.momentum[d]);
+  scalars.push_back(progress.dt_cap);
   w.write<double>("run/scalars", scalars);
   std::vector<long long> counters{sim.steps(), progress.files, inlet.layers, sim.water().next_id, sim.soil().next_id};
   w.write<long long>("run/counters", counters);
@@ -99,7 +102,7 @@ void read_state(checkpoint::Reader& r, Simulation<Dim>& sim, RunProgress& progre
   read_species(r, "soil", sim.soil());
   const auto scalars = r.read<double>("run/scalars");
   const auto counters = r.read<long long>("run/counters");
-  if (scalars.size() != kScalars + Dim || counters.size() != 5)
+  if ((scalars.size() != kScalars + Dim && scalars.size() != kScalars + Dim + 1) || counters.size() != 5)
     throw LibraryError("checkpoint run record has another layout than this build's");
   Outflow<Dim> o;
   o.water_mass = scalars[1], o.soil_mass = scalars[2];
@@ -109,6 +112,7 @@ void read_state(checkpoint::Reader& r, Simulation<Dim>& sim, RunProgress& progre
   progress.next_sample = scalars[3], progress.next_output = scalars[4], progress.smallest_dt = scalars[5];
   progress.outlet = {scalars[6], scalars[7], scalars[8], scalars[9], scalars[10]};
   progress.initial_soil_volume = scalars[11];
+  progress.dt_cap = scalars.size() > kScalars + Dim ? scalars[kScalars + Dim] : std::numeric_limits<double>::infinity();
   progress.files = counters[1];
   sim.water().next_id = counters[3], sim.soil().next_id = counters[4];
   progress.limiters.clear();

@@ -3,6 +3,7 @@
 // array of both species, the outflow record, the inlet's state, and the run's progress (time, step, the next sample
 // and output times, counters). Everything a restart needs to continue bit for bit on the same rank
 // count: the grid is rebuilt from the particles each step and holds nothing across steps.
+#include <limits>
 #include <map>
 #include <string>
 
@@ -20,6 +21,8 @@ struct RunProgress {
   std::map<std::string, long long> limiters;   // steps limited by each criterion
   OutletRecord outlet;                         // the outflow discharge at the series times
   double initial_soil_volume = 0;              // V_0 of the eroded volume (io/dam_measures.hpp)
+  // s: the implicit forces' step cap after a failed solve (run/run_mpm.cpp); infinity: none
+  double dt_cap = std::numeric_limits<double>::infinity();
 };
 
 template <int Dim>

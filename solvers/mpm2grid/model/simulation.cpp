@@ -13,6 +13,7 @@
 #include "solvers/mpm2grid/grid/node_tile.hpp"
 #include "solvers/mpm2grid/kernels/vector_clones.hpp"
 #include "solvers/mpm2grid/materials/drucker_prager_return.hpp"
+#include "solvers/mpm2grid/model/trial_deformation.hpp"
 #include "solvers/mpm2grid/transfer/apic.hpp"
 #include "solvers/mpm2grid/transfer/particle_order.hpp"
 #include "solvers/mpm2grid/transfer/stencil_rows.hpp"
@@ -29,6 +30,14 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
       comm_(std::move(comm)) {
   if (s_.inlet) inlet_.emplace(*s_.inlet);
   if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, grid_);
+  if (s_.forces == ForceScheme::implicit_end) {
+    if (!comm_) throw std::invalid_argument("the implicit forces' Newton-Krylov solve needs a communicator");
+    if (s_.drag != DragScheme::lumped || s_.mixture)
+      throw std::invalid_argument("the implicit forces work with the lumped drag and without the mixture");
+    // The residual is in m/s: 1e-9 m/s RMS is far below any flow's time-step error; 1e-6 of the
+    // explicit guess's residual (module comment of model/implicit_forces.cpp).
+    newton_ = std::make_unique<NewtonKrylov>(*comm_, NewtonKrylovSettings{.atol_per_entry = 1e-9, .rtol = 1e-6});
+  }
   if (s_.drag != DragScheme::consistent) return;
   if (!comm_) throw std::invalid_argument("the consistent drag solve needs a communicator");
   consistent_ = std::make_unique<ConsistentDrag<Dim>>(*comm_, "drag_");
@@ -56,6 +65,7 @@ StepLimit Simulation<Dim>::stable_dt(const std::optional<ParticleExtremes>& know
     if (dt < best.dt) best = {dt, why};
   };
   if (vmax > 0) consider(s_.cfl * h / vmax, "cfl (velocity)");
+  if (s_.forces == ForceScheme::implicit_end) return best;  // no wave limits the implicit forces
   if (water) {
     double c = s_.water.eos.sound_speed(s_.water.density);
     // The wave in the pores also moves the skeleton (docs/methods/mpm2grid.md, "Mixture (optional)").
@@ -110,12 +120,16 @@ void Simulation<Dim>::stresses() {
   soil_drag_.resize(soil_.size());
   solid_volume_.resize(s_.buoyancy ? soil_.size() : 0);
   const double c_e = s_.soil.drag_coefficient(s_.water.density), solid = 1 - s_.soil.porosity;
+  const bool implicit = s_.forces == ForceScheme::implicit_end;
   for (std::size_t p = 0; p < soil_.size(); ++p) {
     // The stress is a function of F_E alone: a known one for a bit-for-bit equal F_E is the
     // same value, not computed again. (Particles removed or moved since only miss it.)
-    const bool known = p < known_stress_.size() && known_stress_[p].known &&
-                       std::memcmp(known_stress_[p].F.data(), soil_.F[p].data(), sizeof(Mat<Dim>)) == 0;
-    soil_tau_[p] = known ? known_stress_[p].tau : s_.soil.material.template kirchhoff<Dim>(soil_.F[p]);
+    // (The implicit forces take the stress at the step's end: none is needed here.)
+    if (!implicit) {
+      const bool known = p < known_stress_.size() && known_stress_[p].known &&
+                         std::memcmp(known_stress_[p].F.data(), soil_.F[p].data(), sizeof(Mat<Dim>)) == 0;
+      soil_tau_[p] = known ? known_stress_[p].tau : s_.soil.material.template kirchhoff<Dim>(soil_.F[p]);
+    }
     const double volume = soil_.volume0[p] * soil_.F[p].determinant();
     soil_drag_[p] = c_e * volume;
     if (s_.buoyancy) solid_volume_[p] = solid * volume;
@@ -137,11 +151,15 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::spread(const Particles<Dim>& P, const 
 template <int Dim>
 void Simulation<Dim>::particles_to_grids(double dt) {
   const double fold_dt = s_.drag == DragScheme::explicit_euler ? 0.0 : dt;
+  // The implicit forces leave the stresses out here (model/implicit_forces.cpp adds them).
+  const bool implicit = s_.forces == ForceScheme::implicit_end;
   if (s_.water.flip > 0) velocities_before(water_, water_fold_, water_before_);
   if (s_.soil.flip > 0) velocities_before(soil_, fold_, soil_before_);
   {
     auto timed = phase(StepPhase::p2g_water);
-    spread(water_, {.pressure = &water_pressure_, .fold_dt = fold_dt, .walls = &water_fold_, .gravity = s_.gravity},
+    spread(water_,
+           {.pressure = &water_pressure_, .pressure_force = !implicit, .fold_dt = fold_dt, .walls = &water_fold_,
+            .gravity = s_.gravity},
            water_nodes_);
   }
   if (dd_) {
@@ -149,7 +167,7 @@ void Simulation<Dim>::particles_to_grids(double dt) {
     dd_->sum_to_owners(water_nodes_);
   }
   P2GSources<Dim> soil{
-      .tau = &soil_tau_, .drag = &soil_drag_, .fold_dt = fold_dt, .walls = &fold_, .gravity = s_.gravity};
+      .tau = implicit ? nullptr : &soil_tau_, .drag = &soil_drag_, .fold_dt = fold_dt, .walls = &fold_, .gravity = s_.gravity};
   if (s_.buoyancy) {
     auto& p = water_nodes_.pressure;
     for (std::size_t i = 0; i < grid_.nodes(); ++i) p[i] = water_nodes_.mass[i] > 0 ? p[i] / water_nodes_.mass[i] : 0.0;
@@ -230,6 +248,7 @@ void Simulation<Dim>::keep_known_stresses() {
 // copy_to_ghosts() replaces them with the owners').
 template <int Dim>
 void Simulation<Dim>::solve_grid(double dt) {
+  if (newton_) return solve_grid_implicit(dt);
   if (!consistent_) {
     solve_grid_velocities(soil_nodes_, water_nodes_, dt, s_.drag);
     return;
@@ -440,22 +459,6 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mark_moved(const Particles<Dim>& P, st
   for (std::size_t p = 0; p < P.size(); ++p) left[p] = BlockGrid<Dim>::key(grid_.home_block(P.x[p])) != home_before_[p];
 }
 
-namespace {
-// The trial deformation gradient (I + dt grad v) F as F + dt (grad v F), in scalar code (faster
-// than Eigen's product with the sum: docs/mpm2grid.md, "Benchmarks").
-template <int Dim>
-Mat<Dim> trial_deformation(const Mat<Dim>& grad_v, const Mat<Dim>& F, double dt) {
-  Mat<Dim> out;
-  for (int j = 0; j < Dim; ++j)
-    for (int i = 0; i < Dim; ++i) {
-      double v = grad_v(i, 0) * F(0, j);
-      for (int k = 1; k < Dim; ++k) v += grad_v(i, k) * F(k, j);
-      out(i, j) = F(i, j) + dt * v;
-    }
-  return out;
-}
-}  // namespace
-
 // The particle updates after G2P, compiled for the baseline only with the return mapping inlined
 // (kernels/vector_clones.hpp, SUITE_INLINE_CALLS), which makes the step faster. (Updating each
 // particle inside the G2P sweep instead, its gradient never stored, was slower: the return
@@ -467,12 +470,15 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   // their home blocks before the move, compared after it.
   for (auto& left : left_home_) left.clear();
   std::optional<StepPhaseScope> timed(std::in_place, times_, StepPhase::g2p_water, wait_clock());
+  // The implicit forces' steps are long: exp(dt div v) keeps J > 0 at any dt (the implicit
+  // solve takes the same J^; model/implicit_forces.cpp).
+  const bool implicit = s_.forces == ForceScheme::implicit_end;
   water_velocities();
   if (s_.mixture) mixture_volume_rates(dt);  // at the positions the water was spread from
   if (dd_) record_homes(water_);
   for (std::size_t p = 0; p < water_.size(); ++p) {
     water_.x[p] += dt * water_.v[p];
-    if (!s_.mixture) water_.J[p] *= 1 + dt * divergence_[p];
+    if (!s_.mixture) water_.J[p] *= implicit ? std::exp(dt * divergence_[p]) : 1 + dt * divergence_[p];
     s_.walls.clamp(water_.x[p]);
   }
   if (dd_) mark_moved(water_, left_home_[0]);

@@ -23,6 +23,7 @@
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/materials/hencky_drucker_prager.hpp"
 #include "solvers/mpm2grid/materials/weakly_compressible_water.hpp"
+#include "solvers/mpm2grid/model/implicit_state.hpp"
 #include "solvers/mpm2grid/model/step_timers.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
 #include "solvers/mpm2grid/transfer/apic.hpp"
@@ -64,6 +65,20 @@ struct SimulationSettings {
   WaterSettings water;
   SoilSettings soil;
   DragScheme drag = DragScheme::lumped;
+  // implicit_end: the elastic forces at the step's end, solved by Newton-Krylov over the
+  // communicator (PETSc options prefix "implicit_"); with the lumped drag, without the mixture.
+  ForceScheme forces = ForceScheme::explicit_start;
+  // With implicit forces: the most Newton solves a step makes while the water's tension clamp
+  // changes sides (model/implicit_forces.cpp). 1: each particle's side of the clamp from the
+  // step's start, the clamp alone explicit (the water column's front moved by under 0.1% with 2
+  // or 4, at twice and 2.4 times the cost).
+  int clamp_passes = 1;
+  // With implicit forces: the soil's stress in the solve is that of its trial state returned onto
+  // Drucker-Prager (the saturation of the step's start), true; or of the elastic trial state, the
+  // projection after the solve (the dissertation's eq. 3.26), false. Elastic in the solve, example
+  // 2 at h = 0.5 m eroded 0.06 m^2 in 10 s instead of the explicit forces' 1.0 (docs/mpm2grid.md,
+  // "Implicit forces").
+  bool plastic_solve = true;
   double cfl = 0.4;                         // fraction of a cell a particle or a wave may cross per step
   double dt_max = 1e-3;                     // s
   std::optional<InletSettings<Dim>> inlet;  // water inlet on the x_low side, if any
@@ -122,14 +137,16 @@ class Simulation {
   double time() const { return time_; }
   // The consistent drag's last KSP solve (zero before the first, or for the other schemes).
   const SolveStats& drag_stats() const { return drag_stats_; }
+  // The implicit forces' last Newton-Krylov solve and iteration counts (zero with explicit forces).
+  const ImplicitState<Dim>& implicit() const { return implicit_; }
   long long steps() const { return steps_; }
   // This rank's time per phase of step() since the simulation was built (model/step_timers.hpp).
   const StepTimes& step_times() const { return times_; }
 
   // The largest stable dt now: cfl h / max |v_p|, cfl h / c for the water's and the soil's wave
-  // speeds, and dt_max. Drag never limits it (implicit). `known`: the extremes of the particles
-  // as they are now, already reduced over the ranks (a run's blow-up check has them), which saves
-  // the scan and its reduction; without them COLLECTIVE.
+  // speeds (explicit forces only), and dt_max. Drag never limits it (implicit). `known`: the
+  // extremes of the particles as they are now, already reduced over the ranks (a run's blow-up
+  // check has them), which saves the scan and its reduction; without them COLLECTIVE.
   StepLimit stable_dt(const std::optional<ParticleExtremes>& known = std::nullopt) const;
 
   // Advances by dt. COLLECTIVE.
@@ -171,6 +188,10 @@ class Simulation {
   void remove_outflow();
   void keep_known_stresses();
   void solve_grid(double dt);
+  void solve_grid_implicit(double dt);  // model/implicit_forces.cpp
+  bool implicit_residual(const double* x, double* r, double dt, double t_next);
+  bool trial_forces(double dt);
+  void constrain(double t_next);
   void add_loads();
   void solid_fractions();
   void mixture_volume_rates(double dt);
@@ -218,6 +239,8 @@ class Simulation {
   std::optional<mpi::Comm> comm_;
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;
   SolveStats drag_stats_{};
+  std::unique_ptr<NewtonKrylov> newton_;  // with implicit forces
+  ImplicitState<Dim> implicit_;
   Outflow<Dim> outflow_;
   std::optional<Inlet<Dim>> inlet_;
   std::optional<DomainDecomposition<Dim>> dd_;

@@ -35,6 +35,9 @@
 namespace suite::mpm2grid {
 namespace {
 
+// What the steps after a failed implicit solve count as their limit (run.json's dt_limiters).
+constexpr const char* kImplicitLimiter = "implicit solve (dt cut after a failed Newton-Krylov solve)";
+
 // series.csv. Masses are per metre of thickness in 2D (kg/m), as are the volumes (m^2) and the
 // discharges (m^2/s).
 template <int Dim>
@@ -130,8 +133,11 @@ class MpmRun {
     }
     // The steps' traffic, without the first distribution's (half of every rank's band moves).
     if (const auto* dd = sim_.decomposition()) traffic_before_ = dd->stats();
-    log_.info("{}D scene {}: h = {} m, {} water and {} soil particles, drag {}", Dim, scene_.name,
-              scene_.simulation.h, count(sim_.water()), count(sim_.soil()), drag_name(scene_.simulation.drag));
+    log_.info("{}D scene {}: h = {} m, {} water and {} soil particles, drag {}, {}", Dim, scene_.name,
+              scene_.simulation.h, count(sim_.water()), count(sim_.soil()), drag_name(scene_.simulation.drag),
+              implicit() ? "implicit forces (backward Euler, PETSc SNES with prefix implicit_: Newton + GMRES, "
+                           "matrix-free)"
+                         : "explicit forces");
     if (comm_.size() > 1) {
       const auto per_rank = comm_.all_gather(static_cast<long long>(sim_.water().size() + sim_.soil().size()));
       log_.info("domain decomposed over {} ranks (METIS on the grid blocks; halo 2 cells): particles per rank {}",
@@ -187,14 +193,36 @@ class MpmRun {
   void advance() {
     std::optional<ScopedPhase> checks(std::in_place, timers_, "dt limit");
     // The last blow-up check scanned the particles as they are now: its extremes save a scan.
-    const StepLimit limit = sim_.stable_dt(std::exchange(extremes_, std::nullopt));
+    StepLimit limit = sim_.stable_dt(std::exchange(extremes_, std::nullopt));
     checks.reset();
-    ++p_.limiters[limit.limiter];
+    // The implicit forces' step after a Newton-Krylov solve failed: halved at each failure, it
+    // grows back by 1.25 a step.
+    if (p_.dt_cap < limit.dt) limit = {p_.dt_cap, kImplicitLimiter};
     const double to_event = std::min({p_.next_sample, p_.next_output, scene_.time.end}) - sim_.time();
-    const double dt = std::min(limit.dt, to_event);
+    double dt = std::min(limit.dt, to_event);
     {
       ScopedPhase phase(timers_, "step");
-      sim_.step(dt);
+      for (;;) {
+        try {
+          sim_.step(dt);
+          break;
+        } catch (const ImplicitSolveFailed& failed) {
+          // Nothing of the step's state has changed before the solve: the step is taken again.
+          if (dt < 1e-3 * limit.dt)
+            throw InputError(fmt::format("{}; it failed down to dt = {:.4g} s, a thousandth of the step the scene's "
+                                         "limits allow: check the scene's materials and walls",
+                                         failed.what(), dt));
+          log_.warn("{}; taking the step again with dt = {:.4g} s", failed.what(), dt / 2);
+          dt /= 2;
+          limit = {dt, kImplicitLimiter};
+          p_.dt_cap = dt;
+        }
+      }
+    }
+    ++p_.limiters[limit.limiter];
+    if (p_.dt_cap < std::numeric_limits<double>::infinity()) {
+      p_.dt_cap *= 1.25;
+      if (p_.dt_cap >= sim_.stable_dt().dt) p_.dt_cap = std::numeric_limits<double>::infinity();
     }
     drag_iterations_ = std::max(drag_iterations_, static_cast<long long>(sim_.drag_stats().iterations));
     // After the first solve every solver has read its options: one nothing read is a mistake.
@@ -202,7 +230,8 @@ class MpmRun {
       if (const auto unused = petsc_->unused_options(); !unused.empty())
         throw InputError(fmt::format("petsc_options: PETSc used no option named {}; check the spelling (the "
                                      "consistent drag's options start with -drag_, e.g. -drag_ksp_rtol 1e-10 "
-                                     "-drag_pc_type jacobi)",
+                                     "-drag_pc_type jacobi; the implicit forces' with -implicit_, e.g. "
+                                     "-implicit_snes_rtol 1e-8)",
                                      fmt::join(unused, ", ")));
     last_dt_ = dt;
     p_.smallest_dt = std::min(p_.smallest_dt, dt);
@@ -413,6 +442,21 @@ class MpmRun {
   void record_extras() {
     record_.extra()["dt_limiters"] = p_.limiters;
     if (scene_.simulation.drag == DragScheme::consistent) record_.extra()["drag_ksp_max_iterations"] = drag_iterations_;
+    if (implicit()) {
+      // This run's (or its part since the restart: the counts start with the simulation), per step.
+      const ImplicitState<Dim>& im = sim_.implicit();
+      const double steps = static_cast<double>(std::max(1LL, sim_.steps() - first_step_));
+      auto& j = record_.extra()["implicit_forces"];
+      j["newton_per_step"] = static_cast<double>(im.newton_total) / steps;
+      j["krylov_per_step"] = static_cast<double>(im.krylov_total) / steps;
+      j["residual_evaluations_per_step"] = static_cast<double>(im.evaluations_total) / steps;
+      j["newton_most_in_a_step"] = im.newton_most;
+      j["krylov_most_in_a_step"] = im.krylov_most;
+      if (scene_.simulation.clamp_passes > 1) {
+        j["clamp_passes_per_step"] = static_cast<double>(im.passes_total) / steps;
+        j["steps_with_clamp_side_changes"] = im.clamp_changed_steps;  // after the last pass
+      }
+    }
     if (const auto* dd = sim_.decomposition()) record_decomposition(*dd, sim_.steps() - first_step_);
   }
 
@@ -440,9 +484,12 @@ class MpmRun {
     j["particles_per_rank"] = comm_.all_gather(static_cast<long long>(sim_.water().size() + sim_.soil().size()));
   }
 
-  // A PETSc session for the consistent drag only.
+  bool implicit() const { return scene_.simulation.forces == ForceScheme::implicit_end; }
+
+  // A PETSc session for the consistent drag and the implicit forces only.
   static std::unique_ptr<PetscSession> petsc_session(const mpi::Comm& comm, const Scene<Dim>& scene) {
-    if (scene.simulation.drag != DragScheme::consistent) return nullptr;
+    if (scene.simulation.drag != DragScheme::consistent && scene.simulation.forces != ForceScheme::implicit_end)
+      return nullptr;
     return std::make_unique<PetscSession>(comm, scene.petsc_options);
   }
 

@@ -207,10 +207,27 @@ Scene<Dim> read_scene(const config::Config& cfg) {
   const auto drag = root.choice("drag", {"lumped", "consistent", "explicit"}, "lumped");
   sim.drag = drag == "lumped" ? DragScheme::lumped : drag == "consistent" ? DragScheme::consistent
                                                                           : DragScheme::explicit_euler;
+  // The elastic forces at the step's start or its end (model/implicit_forces.cpp).
+  const auto forces = root.choice("forces", {"explicit", "implicit"}, "explicit");
+  if (forces == "implicit") {
+    sim.forces = ForceScheme::implicit_end;
+    if (sim.drag != DragScheme::lumped)
+      root.reject("forces", fmt::format("the implicit forces couple the species with the lumped drag, and this scene's "
+                                        "drag is {}; set drag: lumped or forces: explicit",
+                                        drag));
+    if (sim.mixture) root.reject("forces", "the implicit forces do not include the mixture; drop mixture: true or set "
+                                           "forces: explicit");
+    const auto implicit = root.section_or_empty("implicit");
+    sim.clamp_passes = static_cast<int>(implicit.integer("clamp_passes", 1, 1, 100));
+    sim.plastic_solve = implicit.choice("plasticity", {"in_solve", "after_solve"}, "in_solve") == "in_solve";
+  } else if (root.has("implicit")) {
+    root.reject("implicit", "the implicit: section sets the implicit forces' solve; add forces: implicit or drop it");
+  }
   sc.petsc_options = root.get<std::string>("petsc_options", "");
-  if (!sc.petsc_options.empty() && sim.drag != DragScheme::consistent)
-    root.reject("petsc_options", fmt::format("only the consistent drag solves with PETSc, and this scene's drag is {}; "
-                                             "set drag: consistent or drop petsc_options",
+  if (!sc.petsc_options.empty() && sim.drag != DragScheme::consistent && forces != "implicit")
+    root.reject("petsc_options", fmt::format("only the consistent drag and the implicit forces solve with PETSc, and this "
+                                             "scene has drag: {} and forces: explicit; set drag: consistent or forces: "
+                                             "implicit, or drop petsc_options",
                                              drag));
   const auto time = root.section("time");
   sc.time.end = time.quantity("end", "s", Range::positive());

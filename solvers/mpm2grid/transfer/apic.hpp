@@ -81,6 +81,9 @@ struct P2GSources {
   // or a pressure p per particle (Pa): the water's tau = -J p I. Then w_ip m_p p_p is also added
   // to nodes.pressure (the buoyancy's node pressures).
   const std::vector<double>* pressure = nullptr;
+  // false: the pressure's force is left out, its node sums still spread (the implicit forces,
+  // model/implicit_forces.cpp, add the force at the step's end).
+  bool pressure_force = true;
   // c_E V per particle (kg/s): w_ip c_E V into nodes.drag (not with `pressure`).
   const std::vector<double>* drag = nullptr;
   // Buoyancy: the body force -V_s grad p on each particle, spread with w_ip, V_s per particle
@@ -159,7 +162,7 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
                        NodeFields<Dim>& nodes) {
   if (in.tau)
     particles_to_grid<StressForm::full, Fold>(P, in, grid, nodes);
-  else if (in.pressure)
+  else if (in.pressure && in.pressure_force)
     particles_to_grid<StressForm::isotropic, Fold>(P, in, grid, nodes);
   else
     particles_to_grid<StressForm::none, Fold>(P, in, grid, nodes);

@@ -1,0 +1,214 @@
+// The implicit forces (docs/methods/mpm2grid.md, "Implicit forces"; issue 29): the grid update
+// of the dissertation's eq. 3.24,
+//   (M + dt D) v = M v^n + dt (M g + f(x^(v))),
+// with the elastic forces f of both species taken at the step's end (backward Euler). Each
+// particle's trial deformation comes from the unknown node velocities v:
+//   soil   F^ = (I + dt grad v_p) F^n,
+//          f_i = -sum_p V_p^0 P(F^) (F^n)^T grad w_ip = -sum_p V_p^0 tau(F^) (I + dt grad v_p)^-T grad w_ip
+//   water  J^ = exp(dt div v_p) J^n  (positive at any dt; the particle update takes the same),
+//          f_i = sum_p V_p^0 J^ p(J^) grad w_ip
+// (eqs. 3.16, 3.17: the derivatives of the elastic energies at the moved nodes x^ = x + dt v, so
+// the update is the stationary point of a potential, convex for the water). The soil's stress is
+// that of its trial state returned onto Drucker-Prager (with the saturation of the step's start;
+// the particle update returns it again with the step's own); with plastic_solve false it is the
+// elastic trial state's and the projection follows the solve, as the dissertation's eq. 3.26 has
+// it, which kept example 2's dam from eroding (docs/mpm2grid.md, "Implicit forces"). The water's
+// tension clamp (materials/weakly_compressible_water.hpp) is an
+// active set: each particle's side of it from the step's start, fixed during the solve (its kink
+// inside the solve stalled Newton), with clamp_passes > 1 solved again until the sides settle.
+// The buoyancy stays the step's start's (the node pressures of P2G).
+//
+// The unknowns are the velocities of both species on this rank's owned nodes with mass. With G(v)
+// the lumped drag update of coupling/drag_solve.hpp with the forces f(v), and W the walls' and
+// the inlet's conditions (applied after every update), the solve finds the fixed point
+//   R(v) = v - W(G(v)) = 0
+// by matrix-free Newton-Krylov (core/petsc/newton_krylov.hpp). W(G(0)) is the explicit update: the
+// first guess. R is in m/s; its Jacobian I + dt^2 (M + dt D)^-1 K (K the stiffness) has the drag's
+// node-local block inverted in G, so GMRES needs no preconditioner for the drag, but its
+// iterations grow with the cells a wave crosses in a step (docs/mpm2grid.md, "Implicit forces").
+// A trial velocity that inverts a soil particle (det(I + dt grad v) <= 0) lies outside R's
+// domain: the line search shortens its step. Every residual evaluation is COLLECTIVE (the halo
+// copy of the trial velocities, the halo sum of the forces, one reduction).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "solvers/mpm2grid/kernels/vector_clones.hpp"
+#include "solvers/mpm2grid/materials/drucker_prager_return.hpp"
+#include "solvers/mpm2grid/model/simulation.hpp"
+#include "solvers/mpm2grid/model/trial_deformation.hpp"
+
+namespace suite::mpm2grid {
+
+namespace {
+
+// A mass-free copy of a species' particles at their positions (for G2P of trial velocities and a
+// P2G of stresses alone): volume0 kept, J = 1 (the stresses given are Kirchhoff's), no mass,
+// velocity or C.
+template <int Dim>
+void make_probe(const Particles<Dim>& P, Particles<Dim>& probe) {
+  probe.x = P.x;
+  probe.volume0 = P.volume0;
+  probe.J.assign(P.size(), 1.0);
+  probe.mass.assign(P.size(), 0.0);
+  probe.v.assign(P.size(), Vec<Dim>::Zero());
+  probe.C.assign(P.size(), Mat<Dim>::Zero());
+}
+
+}  // namespace
+
+template <int Dim>
+void Simulation<Dim>::solve_grid_implicit(double dt) {
+  ImplicitState<Dim>& s = implicit_;
+  const double t_next = time_ + dt;
+  s.soil_slots.clear();
+  s.water_slots.clear();
+  const std::vector<char>* owned = dd_ ? &dd_->owned_blocks() : nullptr;
+  for (std::size_t i = 0; i < grid_.nodes(); ++i) {
+    if (owned && !(*owned)[i / BlockGrid<Dim>::kNodes]) continue;
+    if (soil_nodes_.mass[i] > 0) s.soil_slots.push_back(static_cast<long>(i));
+    if (water_nodes_.mass[i] > 0) s.water_slots.push_back(static_cast<long>(i));
+  }
+  s.soil_base = soil_nodes_.force;
+  s.water_base = water_nodes_.force;
+  make_probe(soil_, s.soil_probe);
+  make_probe(water_, s.water_probe);
+  const std::size_t n = Dim * (s.soil_slots.size() + s.water_slots.size());
+  std::vector<double> x(n, 0.0), r(n);
+  // The tension clamp's active set from the step's start; then, with clamp_passes > 1, more
+  // Newton solves, each from the last one's solution, until no particle's side of the clamp
+  // changes or clamp_passes solves are done.
+  const WeaklyCompressibleWater& eos = s_.water.eos;
+  const auto held = [&](double J) { return eos.unclamped_pressure(J) < eos.min_pressure; };
+  s.water_held.resize(water_.size());
+  for (std::size_t p = 0; p < water_.size(); ++p) s.water_held[p] = held(water_.J[p]);
+  // The first guess: the explicit update W(G(0)); where that inverts a soil particle (a long
+  // step's explicit forces overshoot) and the solve cannot even start, zero.
+  implicit_residual(x.data(), r.data(), dt, t_next);
+  for (std::size_t k = 0; k < n; ++k) x[k] = -r[k];
+  s.evaluations_total += 1;
+  const auto solve = [&] {
+    s.last = newton_->solve(x, [&](const double* v, double* out) { return implicit_residual(v, out, dt, t_next); });
+    s.evaluations_total += s.last.residual_evaluations;
+    if (s.last.converged || s.last.newton_iterations > 0 || s.last.reason != "DIVERGED_FUNCTION_DOMAIN") return;
+    x.assign(n, 0.0);
+    s.last = newton_->solve(x, [&](const double* v, double* out) { return implicit_residual(v, out, dt, t_next); });
+    s.evaluations_total += s.last.residual_evaluations;
+  };
+  double changed = 0;
+  for (s.passes = 1;; ++s.passes) {
+    solve();
+    if (!s.last.converged)
+      throw ImplicitSolveFailed(fmt::format(
+          "the implicit forces' Newton-Krylov solve did not converge at step {} (t = {:.6g} s, dt = {:.4g} s): {} after "
+          "{} Newton and {} GMRES iterations",
+          steps_, time_, dt, s.last.reason, s.last.newton_iterations, s.last.krylov_iterations));
+    s.newton_total += s.last.newton_iterations;
+    s.krylov_total += s.last.krylov_iterations;
+    s.newton_most = std::max(s.newton_most, s.last.newton_iterations);
+    s.krylov_most = std::max(s.krylov_most, s.last.krylov_iterations);
+    if (s_.clamp_passes == 1) break;
+    implicit_residual(x.data(), r.data(), dt, t_next);  // J^ at the solution
+    s.evaluations_total += 1;
+    changed = 0;
+    for (std::size_t p = 0; p < water_.size(); ++p) {
+      const bool now = held(s.water_trial_J[p]);
+      changed += now != static_cast<bool>(s.water_held[p]);
+      s.water_held[p] = now;
+    }
+    changed = sum_over_ranks(changed);
+    if (changed == 0 || s.passes >= s_.clamp_passes) break;
+  }
+  s.passes_total += s.passes;
+  s.clamp_changed_steps += changed > 0;
+  // The solution's velocities (the walls and the inlet act on them next, as after any update).
+  for (auto* f : {&soil_nodes_, &water_nodes_}) std::fill(f->velocity.begin(), f->velocity.end(), Vec<Dim>::Zero());
+  std::size_t k = 0;
+  for (auto [slots, nodes] : {std::pair{&s.soil_slots, &soil_nodes_}, std::pair{&s.water_slots, &water_nodes_}})
+    for (const long i : *slots)
+      for (int d = 0; d < Dim; ++d) nodes->velocity[static_cast<std::size_t>(i)][d] = x[k++];
+}
+
+// The walls' and the inlet's conditions on the node velocities (W).
+template <int Dim>
+void Simulation<Dim>::constrain(double t_next) {
+  water_walls_.apply(grid_, water_nodes_);
+  s_.walls.apply(grid_, soil_nodes_);
+  if (inlet_) inlet_->impose(grid_, water_nodes_, t_next);
+}
+
+// r = v - W(G(v)) for the unknowns x (module comment); leaves W(G(v)) in the node velocities.
+// False (on every rank) where the trial velocities invert a soil particle.
+template <int Dim>
+bool Simulation<Dim>::implicit_residual(const double* x, double* r, double dt, double t_next) {
+  ImplicitState<Dim>& s = implicit_;
+  for (auto* f : {&soil_nodes_, &water_nodes_}) std::fill(f->velocity.begin(), f->velocity.end(), Vec<Dim>::Zero());
+  std::size_t k = 0;
+  for (auto [slots, nodes] : {std::pair{&s.soil_slots, &soil_nodes_}, std::pair{&s.water_slots, &water_nodes_}})
+    for (const long i : *slots)
+      for (int d = 0; d < Dim; ++d) nodes->velocity[static_cast<std::size_t>(i)][d] = x[k++];
+  const bool valid = trial_forces(dt);
+  solve_grid_velocities(soil_nodes_, water_nodes_, dt, DragScheme::lumped);
+  constrain(t_next);
+  k = 0;
+  for (auto [slots, nodes] : {std::pair{&s.soil_slots, &soil_nodes_}, std::pair{&s.water_slots, &water_nodes_}})
+    for (const long i : *slots)
+      for (int d = 0; d < Dim; ++d, ++k) r[k] = x[k] - nodes->velocity[static_cast<std::size_t>(i)][d];
+  return valid;
+}
+
+// The node forces f(W(v)) of the velocities in the node fields, added to the fixed ones in the
+// fields' force sums. False (on every rank) where the trial velocities invert a soil particle.
+template <int Dim>
+SUITE_VECTOR_CLONES bool Simulation<Dim>::trial_forces(double dt) {
+  ImplicitState<Dim>& s = implicit_;
+  if (dd_) dd_->copy_to_ghosts(soil_nodes_, water_nodes_);
+  s.water_pressure.resize(water_.size());
+  s.water_trial_J.resize(water_.size());
+  const WeaklyCompressibleWater& eos = s_.water.eos;
+  double inverted = 0;  // soil particles with det(I + dt grad v) <= 0
+  grid_to_particles_each<VelocityGradient::divergence>(
+      s.water_probe, grid_, water_nodes_, nullptr, nullptr, &water_fold_, [&](std::size_t p, double div) {
+        const double trial = std::exp(dt * div) * water_.J[p];
+        s.water_trial_J[p] = trial;
+        // The Kirchhoff pressure J^ p(J^): P2G multiplies by the probe's J, 1.
+        s.water_pressure[p] = trial * (s.water_held[p] ? eos.min_pressure : eos.unclamped_pressure(trial));
+      });
+  s.soil_stress.resize(soil_.size());
+  const HenckyDruckerPrager& material = s_.soil.material;
+  grid_to_particles_each<VelocityGradient::full>(
+      s.soil_probe, grid_, soil_nodes_, nullptr, nullptr, &fold_, [&](std::size_t p, const Mat<Dim>& grad_v) {
+        const Mat<Dim> trial = trial_deformation(grad_v, soil_.F[p], dt);
+        const Mat<Dim> step = Mat<Dim>::Identity() + dt * grad_v;
+        inverted += !(step.determinant() > 0);
+        Mat<Dim> tau;
+        if (s_.plastic_solve) {
+          const ReturnResult<Dim> ret = material.template project<Dim>(trial, soil_.log_jp[p], soil_.saturation[p]);
+          tau = ret.has_stress ? ret.stress : material.template kirchhoff<Dim>(ret.F);
+        } else {
+          tau = material.template kirchhoff<Dim>(trial);
+        }
+        s.soil_stress[p] = tau * step.inverse().transpose();
+      });
+  s.water_force.reset(grid_.nodes());
+  s.soil_force.reset(grid_.nodes());
+  spread(s.water_probe, {.pressure = &s.water_pressure, .walls = &water_fold_}, s.water_force);
+  spread(s.soil_probe, {.tau = &s.soil_stress, .walls = &fold_}, s.soil_force);
+  if (dd_) {
+    dd_->sum_to_owners(s.water_force);
+    dd_->sum_to_owners(s.soil_force);
+  }
+  for (std::size_t i = 0; i < grid_.nodes(); ++i) {
+    water_nodes_.force[i] = s.water_base[i] + s.water_force.force[i];
+    soil_nodes_.force[i] = s.soil_base[i] + s.soil_force.force[i];
+  }
+  return max_over_ranks(inverted) == 0;
+}
+
+template void Simulation<2>::solve_grid_implicit(double);
+template void Simulation<3>::solve_grid_implicit(double);
+
+}  // namespace suite::mpm2grid
