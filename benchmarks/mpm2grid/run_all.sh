@@ -4,17 +4,18 @@
 # take every core).
 #   benchmarks/mpm2grid/run_all.sh [MPM2GRID]      (about 45 min on 2 idle cores)
 #   env: ONLY ("particle_step table_3_4_scaling message_counts martin_moyce dam_convergence drag_stability
-#        soil_stiffness granular_collapse": a subset),
+#        soil_stiffness granular_collapse implicit_forces": a subset),
 #        and every driver's own variables (REPEATS, STEPS, ...) and common.sh's MPM2GRID MPIEXEC OUT NICE KEEP_RUNS
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 out=${OUT:-$root/benchmarks/results/mpm2grid}
-only=${ONLY:-particle_step table_3_4_scaling message_counts martin_moyce dam_convergence drag_stability soil_stiffness granular_collapse}
+only=${ONLY:-particle_step table_3_4_scaling message_counts martin_moyce dam_convergence drag_stability soil_stiffness granular_collapse implicit_forces}
 declare -A driver=([particle_step]=run_particle_step.sh [table_3_4_scaling]=run_table_3_4_scaling.sh
   [message_counts]=run_message_counts.sh
   [martin_moyce]=run_martin_moyce.sh [dam_convergence]=run_dam_convergence.sh [drag_stability]=run_drag_stability.sh
-  [soil_stiffness]=run_soil_stiffness.sh [granular_collapse]=run_granular_collapse.sh)
+  [soil_stiffness]=run_soil_stiffness.sh [granular_collapse]=run_granular_collapse.sh
+  [implicit_forces]=run_implicit_forces.sh)
 for b in $only; do
   echo "=== $b"
   t0=$(date +%s)
@@ -29,9 +30,10 @@ done
   echo "and PNG (\`<name>.md\`, \`<name>.csv\`, \`<name>.png\`); rerun one driver and then this script with"
   echo "ONLY=none to refresh this file. Timings are medians over repeats run in turn."
   # node_scaling needs a many-core node: run_node_scaling.sh there, node_scaling.py anywhere;
-  # comm_model is comm_model.py on node_scaling.csv and message_counts.csv.
+  # comm_model is comm_model.py on node_scaling.csv and message_counts.csv; implicit_forces_h0.25 is
+  # DAM_SPACING=0.25 REPEATS=1 NAME=implicit_forces_h0.25 run_implicit_forces.sh (about 8 min).
   for b in particle_step table_3_4_scaling message_counts node_scaling comm_model martin_moyce dam_convergence \
-    drag_stability soil_stiffness granular_collapse; do
+    drag_stability soil_stiffness granular_collapse implicit_forces implicit_forces_h0.25; do
     if [ -f "$out/$b.md" ]; then
       echo
       sed 's/^## /## /' "$out/$b.md"
