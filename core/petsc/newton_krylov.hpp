@@ -32,11 +32,11 @@ struct NewtonKrylovSettings {
 
 struct NewtonKrylovStats {
   int newton_iterations = 0;
-  int krylov_iterations = 0;       // summed over the Newton iterations
-  int residual_evaluations = 0;    // on this rank, finite-difference products included
+  int krylov_iterations = 0;     // summed over the Newton iterations
+  int residual_evaluations = 0;  // on this rank, finite-difference products included
   bool converged = false;
-  std::string reason;              // PETSc's converged or diverged reason, e.g. "CONVERGED_FNORM_RELATIVE"
-  std::vector<double> history;     // ||R(x_k)||, k = 0 .. newton_iterations
+  std::string reason;           // PETSc's converged or diverged reason, e.g. "CONVERGED_FNORM_RELATIVE"
+  std::vector<double> history;  // ||R(x_k)||, k = 0 .. newton_iterations
 };
 
 class NewtonKrylov {

@@ -13,7 +13,7 @@
 namespace suite::mpm2grid::vibrating_bar {
 
 constexpr double kL = 1.0, kRho = 1000, kE = 1e6;  // m, kg/m^3, Pa
-inline const double kC = std::sqrt(kE / kRho);      // m/s
+inline const double kC = std::sqrt(kE / kRho);     // m/s
 inline const double kOmega = std::numbers::pi / (2 * kL) * kC;
 
 // The scene at `cells` cells per bar length (cfl 0.4, no dt_max to speak of).

@@ -47,6 +47,17 @@ void DomainDecomposition<Dim>::sum_to_owners(NodeFields<Dim>& f) {
 }
 
 template <int Dim>
+void DomainDecomposition<Dim>::sum_forces_to_owners(NodeFields<Dim>& f) {
+  halo_.reverse(
+      comm_, Dim, [&](long i, double* out) { std::copy_n(f.force[i].data(), Dim, out); },
+      [&](long i, const double* in) {
+        for (int d = 0; d < Dim; ++d) f.force[i][d] += in[d];
+      });
+  stats_.halo_bytes += halo_.take_bytes();
+  stats_.halo_messages += halo_.take_messages();
+}
+
+template <int Dim>
 void DomainDecomposition<Dim>::copy_to_ghosts(NodeFields<Dim>& soil, NodeFields<Dim>& water) {
   // Only the ghost nodes this rank's particles reach (the ones its reverse sums sent): G2P reads
   // the others, if at all, with weight zero.

@@ -72,6 +72,8 @@ class DomainDecomposition {
   // COLLECTIVE. Owners get the complete sums of one species' mass, momentum, force (before
   // gravity), drag and pressure sums.
   void sum_to_owners(NodeFields<Dim>& species);
+  // COLLECTIVE. The same for the force sums alone (the implicit forces' stresses).
+  void sum_forces_to_owners(NodeFields<Dim>& species);
   // COLLECTIVE. Ghost nodes get their owners' velocities (both species) and water mass: the
   // nodes this rank's particles reached in this step's sum_to_owners() calls (the others keep
   // their partial values; G2P reads them with weight zero).

@@ -76,6 +76,10 @@ void Simulation<Dim>::solve_grid_implicit(double dt) {
   s.water_base = water_nodes_.force;
   make_probe(soil_, s.soil_probe);
   make_probe(water_, s.water_probe);
+  // The stresses' node sums: sized once a step; each evaluation zeroes the forces alone (the
+  // probes' mass, momentum and pressure sums are zero, and nothing reads them).
+  s.water_force.reset(grid_.nodes());
+  s.soil_force.reset(grid_.nodes());
   const std::size_t n = Dim * (s.soil_slots.size() + s.water_slots.size());
   std::vector<double> x(n, 0.0), r(n);
   // The tension clamp's active set from the step's start; then, with clamp_passes > 1, more
@@ -102,10 +106,11 @@ void Simulation<Dim>::solve_grid_implicit(double dt) {
   for (s.passes = 1;; ++s.passes) {
     solve();
     if (!s.last.converged)
-      throw ImplicitSolveFailed(fmt::format(
-          "the implicit forces' Newton-Krylov solve did not converge at step {} (t = {:.6g} s, dt = {:.4g} s): {} after "
-          "{} Newton and {} GMRES iterations",
-          steps_, time_, dt, s.last.reason, s.last.newton_iterations, s.last.krylov_iterations));
+      throw ImplicitSolveFailed(
+          fmt::format("the implicit forces' Newton-Krylov solve did not converge at step {} (t = {:.6g} s, dt = {:.4g} "
+                      "s): {} after "
+                      "{} Newton and {} GMRES iterations",
+                      steps_, time_, dt, s.last.reason, s.last.newton_iterations, s.last.krylov_iterations));
     s.newton_total += s.last.newton_iterations;
     s.krylov_total += s.last.krylov_iterations;
     s.newton_most = std::max(s.newton_most, s.last.newton_iterations);
@@ -177,35 +182,62 @@ SUITE_VECTOR_CLONES bool Simulation<Dim>::trial_forces(double dt) {
         // The Kirchhoff pressure J^ p(J^): P2G multiplies by the probe's J, 1.
         s.water_pressure[p] = trial * (s.water_held[p] ? eos.min_pressure : eos.unclamped_pressure(trial));
       });
+  s.soil_trial.resize(soil_.size());
   s.soil_stress.resize(soil_.size());
-  const HenckyDruckerPrager& material = s_.soil.material;
-  grid_to_particles_each<VelocityGradient::full>(
-      s.soil_probe, grid_, soil_nodes_, nullptr, nullptr, &fold_, [&](std::size_t p, const Mat<Dim>& grad_v) {
-        const Mat<Dim> trial = trial_deformation(grad_v, soil_.F[p], dt);
-        const Mat<Dim> step = Mat<Dim>::Identity() + dt * grad_v;
-        inverted += !(step.determinant() > 0);
-        Mat<Dim> tau;
-        if (s_.plastic_solve) {
-          const ReturnResult<Dim> ret = material.template project<Dim>(trial, soil_.log_jp[p], soil_.saturation[p]);
-          tau = ret.has_stress ? ret.stress : material.template kirchhoff<Dim>(ret.F);
-        } else {
-          tau = material.template kirchhoff<Dim>(trial);
-        }
-        s.soil_stress[p] = tau * step.inverse().transpose();
-      });
-  s.water_force.reset(grid_.nodes());
-  s.soil_force.reset(grid_.nodes());
+  grid_to_particles_each<VelocityGradient::full>(s.soil_probe, grid_, soil_nodes_, nullptr, nullptr, &fold_,
+                                                 [&](std::size_t p, const Mat<Dim>& grad_v) {
+                                                   s.soil_trial[p] = trial_deformation(grad_v, soil_.F[p], dt);
+                                                   const Mat<Dim> step = Mat<Dim>::Identity() + dt * grad_v;
+                                                   inverted += !(step.determinant() > 0);
+                                                   s.soil_stress[p] = step.inverse().transpose();
+                                                 });
+  trial_stresses();
+  for (auto* f : {&s.water_force, &s.soil_force}) std::fill(f->force.begin(), f->force.end(), Vec<Dim>::Zero());
   spread(s.water_probe, {.pressure = &s.water_pressure, .walls = &water_fold_}, s.water_force);
   spread(s.soil_probe, {.tau = &s.soil_stress, .walls = &fold_}, s.soil_force);
   if (dd_) {
-    dd_->sum_to_owners(s.water_force);
-    dd_->sum_to_owners(s.soil_force);
+    dd_->sum_forces_to_owners(s.water_force);
+    dd_->sum_forces_to_owners(s.soil_force);
   }
   for (std::size_t i = 0; i < grid_.nodes(); ++i) {
     water_nodes_.force[i] = s.water_base[i] + s.water_force.force[i];
     soil_nodes_.force[i] = s.soil_base[i] + s.soil_force.force[i];
   }
   return max_over_ranks(inverted) == 0;
+}
+
+// The soil's stresses tau(F^) (I + dt grad v)^-T from the trial F^ in soil_trial and the
+// (I + dt grad v)^-T in soil_stress; with plastic_solve, tau of F^ returned onto Drucker-Prager,
+// kBatch particles at a time as in the particle update (HenckyDruckerPrager::project_all).
+template <int Dim>
+SUITE_INLINE_CALLS void Simulation<Dim>::trial_stresses() {
+  ImplicitState<Dim>& s = implicit_;
+  const HenckyDruckerPrager& material = s_.soil.material;
+  if (!s_.plastic_solve) {
+    for (std::size_t p = 0; p < soil_.size(); ++p)
+      s.soil_stress[p] = material.template kirchhoff<Dim>(s.soil_trial[p]) * s.soil_stress[p];
+    return;
+  }
+  constexpr int kBatch = 4;
+  for (std::size_t first = 0; first < soil_.size(); first += kBatch) {
+    const int count = static_cast<int>(std::min<std::size_t>(kBatch, soil_.size() - first));
+    Mat<Dim> trial[kBatch];
+    double log_jp[kBatch], saturation[kBatch];
+    for (int k = 0; k < kBatch; ++k) {  // the last batch filled up with F = I
+      const std::size_t p = first + static_cast<std::size_t>(k);
+      const bool real = k < count;
+      trial[k] = real ? s.soil_trial[p] : Mat<Dim>::Identity();
+      log_jp[k] = real ? soil_.log_jp[p] : 0.0;
+      saturation[k] = real ? soil_.saturation[p] : 0.0;
+    }
+    ReturnResult<Dim> r[kBatch];
+    material.template project_all<Dim, kBatch>(trial, log_jp, saturation, r);
+    for (int k = 0; k < count; ++k) {
+      const std::size_t p = first + static_cast<std::size_t>(k);
+      const Mat<Dim> tau = r[k].has_stress ? r[k].stress : material.template kirchhoff<Dim>(r[k].F);
+      s.soil_stress[p] = tau * s.soil_stress[p];
+    }
+  }
 }
 
 template void Simulation<2>::solve_grid_implicit(double);

@@ -34,16 +34,17 @@ struct ImplicitState {
   // The particles' positions and mass-free copies whose G2P gives grad v at the trial velocities
   // and whose P2G spreads only the stresses (their mass, velocity and C are zero).
   Particles<Dim> soil_probe, water_probe;
-  std::vector<Mat<Dim>> soil_stress;    // tau(F^) (I + dt grad v)^-T per soil particle, Pa
-  std::vector<double> water_pressure;   // p(J^) per water particle, Pa
-  std::vector<double> water_trial_J;    // J^ per water particle
+  std::vector<Mat<Dim>> soil_trial;    // F^ per soil particle
+  std::vector<Mat<Dim>> soil_stress;   // tau(F^) (I + dt grad v)^-T per soil particle, Pa
+  std::vector<double> water_pressure;  // J^ p(J^) per water particle (Kirchhoff), Pa
+  std::vector<double> water_trial_J;   // J^ per water particle
   // The water's tension clamp as an active set: 1 where a particle's pressure is held at
   // min_pressure for the whole Newton solve, 0 where it follows the unclamped law (the clamp's
   // kink inside the solve stalls Newton).
   std::vector<char> water_held;
   NodeFields<Dim> soil_force, water_force;  // the stresses' node forces, N
-  NewtonKrylovStats last;               // the last step's last solve
-  int passes = 0;                       // the last step's clamp passes (solves)
+  NewtonKrylovStats last;                   // the last step's last solve
+  int passes = 0;                           // the last step's clamp passes (solves)
   long long passes_total = 0;
   // With clamp_passes > 1: the steps where some particle still ended on the other side of the
   // clamp than held.

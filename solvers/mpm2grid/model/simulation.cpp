@@ -34,9 +34,12 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
     if (!comm_) throw std::invalid_argument("the implicit forces' Newton-Krylov solve needs a communicator");
     if (s_.drag != DragScheme::lumped || s_.mixture)
       throw std::invalid_argument("the implicit forces work with the lumped drag and without the mixture");
-    // The residual is in m/s: 1e-9 m/s RMS is far below any flow's time-step error; 1e-6 of the
-    // explicit guess's residual (module comment of model/implicit_forces.cpp).
-    newton_ = std::make_unique<NewtonKrylov>(*comm_, NewtonKrylovSettings{.atol_per_entry = 1e-9, .rtol = 1e-6});
+    // The residual is in m/s: 1e-9 m/s RMS, or 1e-4 of the explicit guess's residual (the
+    // difference between the explicit and the implicit update), each GMRES solve to 1e-2. Against
+    // 1e-6 and 1e-3: 37% fewer residual evaluations on example 2 (34 -> 21 a step at 0.5 m), 35%
+    // on the water column, with the same eroded volume, outflow and fronts to 5 digits.
+    newton_ = std::make_unique<NewtonKrylov>(
+        *comm_, NewtonKrylovSettings{.atol_per_entry = 1e-9, .rtol = 1e-4, .krylov_rtol = 1e-2});
   }
   if (s_.drag != DragScheme::consistent) return;
   if (!comm_) throw std::invalid_argument("the consistent drag solve needs a communicator");

@@ -191,6 +191,7 @@ class Simulation {
   void solve_grid_implicit(double dt);  // model/implicit_forces.cpp
   bool implicit_residual(const double* x, double* r, double dt, double t_next);
   bool trial_forces(double dt);
+  void trial_stresses();
   void constrain(double t_next);
   void add_loads();
   void solid_fractions();

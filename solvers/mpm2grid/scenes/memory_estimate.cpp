@@ -96,12 +96,13 @@ MemoryEstimate estimate_memory(const Scene<Dim>& sc) {
   if (sc.simulation.soil.flip > 0)
     e.bytes += e.nodes / 2 * kNodeBytes<Dim> / 2 + e.soil_particles * (3 * Dim + Dim * Dim) * sizeof(double);
   // Implicit forces: per particle a mass-free probe (position, velocity, C, mass, volume, J), the
-  // trial pressure and J (water) or stress (soil); per node (each species' nodes counted) a
+  // trial pressure and J (water) or trial F and stress (soil); per node (each species' nodes counted) a
   // second set of node fields for the forces and PETSc's vectors of Dim unknowns: the solution,
   // the residual, GMRES's 30 Krylov vectors and the differencing's few.
   if (sc.simulation.forces == ForceScheme::implicit_end) {
     const double probe = (3 * Dim + Dim * Dim + 3) * sizeof(double);
-    e.bytes += e.water_particles * (probe + 2 * sizeof(double)) + e.soil_particles * (probe + Dim * Dim * sizeof(double)) +
+    e.bytes += e.water_particles * (probe + 2 * sizeof(double)) +
+               e.soil_particles * (probe + 2 * Dim * Dim * sizeof(double)) +
                e.nodes * (kNodeBytes<Dim> / 2 + 40.0 * Dim * sizeof(double));
   }
   e.bytes_per_rank = kRankBytes;
