@@ -10,7 +10,7 @@
 //   b. At small dt it reproduces the explicit forces within its own time-step error: over one
 //      period the largest difference in v_cm between implicit and explicit at the same dt is
 //      backward Euler's damping of the mode (about 2 omega dt v0; within 10%, the explicit
-//      forces' own error is under 1% of it) at cfl 0.4 and 0.1, first order in dt.
+//      forces' own error is under 1% of it) at cfl 0.4 and 0.1, first order in dt; and in 3D.
 //   c. At 3 times the explicit limit the explicit forces blow up within a period (|v_cm| above 10
 //      v0); the implicit ones keep |v_cm| within the mode's (2 / pi) v0 (backward Euler only
 //      takes energy out).
@@ -38,17 +38,19 @@ using namespace vibrating_bar;
 
 // The bar at `cells` cells per length, started in its first mode with amplitude v0, on `comm`
 // (decomposed when it has several ranks; the particles are seeded on rank 0 and distributed).
-std::unique_ptr<Simulation<2>> bar(int cells, double v0, ForceScheme forces, const mpi::Comm& comm) {
-  SimulationSettings<2> s = settings(cells);
+template <int Dim = 2>
+std::unique_ptr<Simulation<Dim>> bar(int cells, double v0, ForceScheme forces, const mpi::Comm& comm) {
+  SimulationSettings<Dim> s = settings<Dim>(cells);
   s.forces = forces;
   s.decomposition.check_every = 0;
-  auto sim = std::make_unique<Simulation<2>>(s, comm);
+  auto sim = std::make_unique<Simulation<Dim>>(s, comm);
   if (comm.is_root()) seed(sim->soil(), cells, v0);
   sim->distribute();
   return sim;
 }
 
-double centre_of_mass_velocity(const Simulation<2>& sim) {
+template <int Dim>
+double centre_of_mass_velocity(const Simulation<Dim>& sim) {
   return sim.sum_over_ranks(sim.soil().momentum()[0]) / sim.sum_over_ranks(sim.soil().total_mass());
 }
 
@@ -58,7 +60,8 @@ double explicit_limit(int cells) {
 }
 
 // v_cm after each step of one period at a fixed dt.
-std::vector<double> period(Simulation<2>& sim, double dt) {
+template <int Dim>
+std::vector<double> period(Simulation<Dim>& sim, double dt) {
   std::vector<double> v;
   const double end = 2 * std::numbers::pi / kOmega;
   while (sim.time() < end * (1 - 1e-12)) {
@@ -67,6 +70,27 @@ std::vector<double> period(Simulation<2>& sim, double dt) {
     if (!std::isfinite(v.back()) || std::abs(v.back()) > 1e3) break;  // blown up
   }
   return v;
+}
+
+// The largest |v_cm implicit - v_cm explicit| / v0 over a period at dt = cfl h / c.
+template <int Dim>
+double implicit_explicit_difference(int cells, double cfl) {
+  const mpi::Comm self(MPI_COMM_SELF);
+  const double v0 = 1e-4 * kC, dt = cfl * explicit_limit(cells);
+  auto ex = bar<Dim>(cells, v0, ForceScheme::explicit_start, self);
+  auto im = bar<Dim>(cells, v0, ForceScheme::implicit_end, self);
+  const auto a = period(*ex, dt), b = period(*im, dt);
+  EXPECT_EQ(a.size(), b.size());
+  double most = 0;
+  for (std::size_t n = 0; n < std::min(a.size(), b.size()); ++n) most = std::max(most, std::abs(a[n] - b[n]) / v0);
+  return most;
+}
+
+// Backward Euler's damping of the mode over a period, in v_cm / v0: (2 / pi) (1 - (1 + (omega
+// dt)^2)^(-N/2)) with N = 2 pi / (omega dt) steps, about 2 omega dt.
+double backward_euler_damping(int cells, double cfl) {
+  const double w = kOmega * cfl * explicit_limit(cells);
+  return 2 / std::numbers::pi * (1 - std::pow(1 + w * w, -std::numbers::pi / w));
 }
 
 // Sets PETSc options for one test and takes them out again.
@@ -102,32 +126,27 @@ TEST(ImplicitForces, NewtonConvergesQuadratically) {
 }
 
 TEST(ImplicitForces, SmallStepsReproduceExplicitForces) {
-  const mpi::Comm self(MPI_COMM_SELF);
   const int cells = 32;
-  const double v0 = 1e-4 * kC;
   double difference[2];
   for (int k = 0; k < 2; ++k) {
-    const double dt = (k == 0 ? 0.4 : 0.1) * explicit_limit(cells);
-    auto ex = bar(cells, v0, ForceScheme::explicit_start, self);
-    auto im = bar(cells, v0, ForceScheme::implicit_end, self);
-    const auto a = period(*ex, dt), b = period(*im, dt);
-    ASSERT_EQ(a.size(), b.size());
-    difference[k] = 0;
-    for (std::size_t n = 0; n < a.size(); ++n) difference[k] = std::max(difference[k], std::abs(a[n] - b[n]) / v0);
-  }
-  // Backward Euler's damping over a period, in v_cm / v0: (2 / pi) (1 - (1 + (omega dt)^2)^(-N/2))
-  // with N = 2 pi / (omega dt) steps, about 2 omega dt.
-  for (int k = 0; k < 2; ++k) {
-    const double dt = (k == 0 ? 0.4 : 0.1) * explicit_limit(cells);
-    const double damping =
-        2 / std::numbers::pi * (1 - std::pow(1 + kOmega * dt * kOmega * dt, -std::numbers::pi / (kOmega * dt)));
-    std::printf(
-        "cfl %.1f: largest |v_cm implicit - v_cm explicit| / v0 over a period %.5f, backward Euler's damping "
-        "%.5f\n",
-        k == 0 ? 0.4 : 0.1, difference[k], damping);
+    const double cfl = k == 0 ? 0.4 : 0.1, damping = backward_euler_damping(cells, cfl);
+    difference[k] = implicit_explicit_difference<2>(cells, cfl);
+    std::printf("cfl %.1f: largest |v_cm implicit - v_cm explicit| / v0 over a period %.5f, backward Euler's "
+                "damping %.5f\n",
+                cfl, difference[k], damping);
     EXPECT_NEAR(difference[k], damping, 0.1 * damping);
   }
   EXPECT_GE(difference[0], 3 * difference[1]);
+}
+
+// The same in 3D (a square duct, 16 cells per bar): one template serves both.
+TEST(ImplicitForces, SmallStepsReproduceExplicitForces3D) {
+  const int cells = 16;
+  const double difference = implicit_explicit_difference<3>(cells, 0.4), damping = backward_euler_damping(cells, 0.4);
+  std::printf("3D, cfl 0.4: largest |v_cm implicit - v_cm explicit| / v0 over a period %.5f, backward Euler's "
+              "damping %.5f\n",
+              difference, damping);
+  EXPECT_NEAR(difference, damping, 0.1 * damping);
 }
 
 TEST(ImplicitForces, StableWhereExplicitForcesBlowUp) {
