@@ -24,7 +24,7 @@
 namespace suite {
 
 struct NewtonKrylovSettings {
-  std::string prefix = "implicit_";  // the options database prefix
+  std::string prefix;  // the options database prefix (mpm2grid's implicit forces: "implicit_")
   double atol_per_entry = 1e-12;     // the absolute residual bound, per entry (RMS)
   double rtol = 1e-6;                // the residual bound relative to the initial guess's
   double krylov_rtol = 1e-3;         // each Newton step's linear solve, relative

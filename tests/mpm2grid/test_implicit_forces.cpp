@@ -9,8 +9,10 @@
 //      3.2e-6).
 //   b. At small dt it reproduces the explicit forces within its own time-step error: over one
 //      period the largest difference in v_cm between implicit and explicit at the same dt is
-//      backward Euler's damping of the mode (about 2 omega dt v0; within 10%, the explicit
-//      forces' own error is under 1% of it) at cfl 0.4 and 0.1, first order in dt; and in 3D.
+//      backward Euler's damping of the mode (about 2 omega dt v0; within 5%: the closed form is
+//      first order, its corrections O(omega dt) = 2-4% here, and the explicit forces' own time
+//      error is under 1% of it; measured 0.2% in 2D, 0.8% in 3D) at cfl 0.4 and 0.1, first order
+//      in dt; and in 3D.
 //   c. At 3 times the explicit limit the explicit forces blow up within a period (|v_cm| above 10
 //      v0); the implicit ones keep |v_cm| within the mode's (2 / pi) v0 (backward Euler only
 //      takes energy out).
@@ -134,7 +136,7 @@ TEST(ImplicitForces, SmallStepsReproduceExplicitForces) {
     std::printf("cfl %.1f: largest |v_cm implicit - v_cm explicit| / v0 over a period %.5f, backward Euler's "
                 "damping %.5f\n",
                 cfl, difference[k], damping);
-    EXPECT_NEAR(difference[k], damping, 0.1 * damping);
+    EXPECT_NEAR(difference[k], damping, 0.05 * damping);
   }
   EXPECT_GE(difference[0], 3 * difference[1]);
 }
@@ -146,7 +148,7 @@ TEST(ImplicitForces, SmallStepsReproduceExplicitForces3D) {
   std::printf("3D, cfl 0.4: largest |v_cm implicit - v_cm explicit| / v0 over a period %.5f, backward Euler's "
               "damping %.5f\n",
               difference, damping);
-  EXPECT_NEAR(difference, damping, 0.1 * damping);
+  EXPECT_NEAR(difference, damping, 0.05 * damping);
 }
 
 TEST(ImplicitForces, StableWhereExplicitForcesBlowUp) {

@@ -95,22 +95,23 @@ void Simulation<Dim>::solve_grid_implicit(double dt) {
   for (std::size_t k = 0; k < n; ++k) x[k] = -r[k];
   s.evaluations_total += 1;
   const auto solve = [&] {
-    s.last = newton_->solve(x, [&](const double* v, double* out) { return implicit_residual(v, out, dt, t_next); });
-    s.evaluations_total += s.last.residual_evaluations;
-    if (s.last.converged || s.last.newton_iterations > 0 || s.last.reason != "DIVERGED_FUNCTION_DOMAIN") return;
-    x.assign(n, 0.0);
-    s.last = newton_->solve(x, [&](const double* v, double* out) { return implicit_residual(v, out, dt, t_next); });
-    s.evaluations_total += s.last.residual_evaluations;
+    for (bool from_zero = false;; from_zero = true) {
+      s.last = newton_->solve(x, [&](const double* v, double* out) { return implicit_residual(v, out, dt, t_next); });
+      s.evaluations_total += s.last.residual_evaluations;
+      const bool could_not_start =
+          !s.last.converged && s.last.newton_iterations == 0 && s.last.reason == "DIVERGED_FUNCTION_DOMAIN";
+      if (from_zero || !could_not_start) return;
+      x.assign(n, 0.0);
+    }
   };
   double changed = 0;
   for (s.passes = 1;; ++s.passes) {
     solve();
     if (!s.last.converged)
-      throw ImplicitSolveFailed(
-          fmt::format("the implicit forces' Newton-Krylov solve did not converge at step {} (t = {:.6g} s, dt = {:.4g} "
-                      "s): {} after "
-                      "{} Newton and {} GMRES iterations",
-                      steps_, time_, dt, s.last.reason, s.last.newton_iterations, s.last.krylov_iterations));
+      throw ImplicitSolveFailed(fmt::format(
+          "the implicit forces' Newton-Krylov solve did not converge at step {} (t = {:.6g} s, dt = {:.4g} s): {} "
+          "after {} Newton and {} GMRES iterations",
+          steps_, time_, dt, s.last.reason, s.last.newton_iterations, s.last.krylov_iterations));
     s.newton_total += s.last.newton_iterations;
     s.krylov_total += s.last.krylov_iterations;
     s.newton_most = std::max(s.newton_most, s.last.newton_iterations);
@@ -130,11 +131,26 @@ void Simulation<Dim>::solve_grid_implicit(double dt) {
   s.passes_total += s.passes;
   s.clamp_changed_steps += changed > 0;
   // The solution's velocities (the walls and the inlet act on them next, as after any update).
-  for (auto* f : {&soil_nodes_, &water_nodes_}) std::fill(f->velocity.begin(), f->velocity.end(), Vec<Dim>::Zero());
+  set_unknown_velocities(x.data());
+}
+
+// Calls f(velocity component, k) for the unknowns' node velocity components in the order of the
+// unknowns (soil slots, then water slots, Dim components each).
+template <int Dim>
+template <class F>
+void Simulation<Dim>::for_each_unknown(F&& f) {
   std::size_t k = 0;
-  for (auto [slots, nodes] : {std::pair{&s.soil_slots, &soil_nodes_}, std::pair{&s.water_slots, &water_nodes_}})
+  for (auto [slots, nodes] :
+       {std::pair{&implicit_.soil_slots, &soil_nodes_}, std::pair{&implicit_.water_slots, &water_nodes_}})
     for (const long i : *slots)
-      for (int d = 0; d < Dim; ++d) nodes->velocity[static_cast<std::size_t>(i)][d] = x[k++];
+      for (int d = 0; d < Dim; ++d) f(nodes->velocity[static_cast<std::size_t>(i)][d], k++);
+}
+
+// Both species' node velocities: the unknowns x on their slots, zero elsewhere.
+template <int Dim>
+void Simulation<Dim>::set_unknown_velocities(const double* x) {
+  for (auto* f : {&soil_nodes_, &water_nodes_}) std::fill(f->velocity.begin(), f->velocity.end(), Vec<Dim>::Zero());
+  for_each_unknown([&](double& v, std::size_t k) { v = x[k]; });
 }
 
 // The walls' and the inlet's conditions on the node velocities (W).
@@ -149,24 +165,16 @@ void Simulation<Dim>::constrain(double t_next) {
 // False (on every rank) where the trial velocities invert a soil particle.
 template <int Dim>
 bool Simulation<Dim>::implicit_residual(const double* x, double* r, double dt, double t_next) {
-  ImplicitState<Dim>& s = implicit_;
-  for (auto* f : {&soil_nodes_, &water_nodes_}) std::fill(f->velocity.begin(), f->velocity.end(), Vec<Dim>::Zero());
-  std::size_t k = 0;
-  for (auto [slots, nodes] : {std::pair{&s.soil_slots, &soil_nodes_}, std::pair{&s.water_slots, &water_nodes_}})
-    for (const long i : *slots)
-      for (int d = 0; d < Dim; ++d) nodes->velocity[static_cast<std::size_t>(i)][d] = x[k++];
+  set_unknown_velocities(x);
   const bool valid = trial_forces(dt);
   solve_grid_velocities(soil_nodes_, water_nodes_, dt, DragScheme::lumped);
   constrain(t_next);
-  k = 0;
-  for (auto [slots, nodes] : {std::pair{&s.soil_slots, &soil_nodes_}, std::pair{&s.water_slots, &water_nodes_}})
-    for (const long i : *slots)
-      for (int d = 0; d < Dim; ++d, ++k) r[k] = x[k] - nodes->velocity[static_cast<std::size_t>(i)][d];
+  for_each_unknown([&](double& v, std::size_t k) { r[k] = x[k] - v; });
   return valid;
 }
 
-// The node forces f(W(v)) of the velocities in the node fields, added to the fixed ones in the
-// fields' force sums. False (on every rank) where the trial velocities invert a soil particle.
+// The node forces f(v) of the velocities in the node fields (on this rank's owned slots), added
+// to the fixed ones in the fields' force sums. False (on every rank) where the trial velocities invert a soil particle.
 template <int Dim>
 SUITE_VECTOR_CLONES bool Simulation<Dim>::trial_forces(double dt) {
   ImplicitState<Dim>& s = implicit_;

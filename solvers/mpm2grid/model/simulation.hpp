@@ -193,6 +193,9 @@ class Simulation {
   bool trial_forces(double dt);
   void trial_stresses();
   void constrain(double t_next);
+  template <class F>
+  void for_each_unknown(F&& f);
+  void set_unknown_velocities(const double* x);
   void add_loads();
   void solid_fractions();
   void mixture_volume_rates(double dt);

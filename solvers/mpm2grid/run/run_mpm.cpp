@@ -197,7 +197,10 @@ class MpmRun {
     checks.reset();
     // The implicit forces' step after a Newton-Krylov solve failed: halved at each failure, it
     // grows back by 1.25 a step.
-    if (p_.dt_cap < limit.dt) limit = {p_.dt_cap, kImplicitLimiter};
+    if (p_.dt_cap < limit.dt)
+      limit = {p_.dt_cap, kImplicitLimiter};
+    else
+      p_.dt_cap = std::numeric_limits<double>::infinity();  // grown back to the limits
     const double to_event = std::min({p_.next_sample, p_.next_output, scene_.time.end}) - sim_.time();
     double dt = std::min(limit.dt, to_event);
     {
@@ -220,10 +223,7 @@ class MpmRun {
       }
     }
     ++p_.limiters[limit.limiter];
-    if (p_.dt_cap < std::numeric_limits<double>::infinity()) {
-      p_.dt_cap *= 1.25;
-      if (p_.dt_cap >= sim_.stable_dt().dt) p_.dt_cap = std::numeric_limits<double>::infinity();
-    }
+    p_.dt_cap *= 1.25;  // infinity stays infinity
     drag_iterations_ = std::max(drag_iterations_, static_cast<long long>(sim_.drag_stats().iterations));
     // After the first solve every solver has read its options: one nothing read is a mistake.
     if (petsc_ && sim_.steps() == first_step_ + 1)
