@@ -36,12 +36,12 @@ COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "parti
            "dt_first", "dt_last", "rss_max_kb", "rss_sum_kb", "kinetic_energy_max", "dt_largest",
            "halo_messages_per_step", "migration_messages_per_step"]
 STEP_PHASES = ["balance", "grid", "halo plan", "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
-               "boundary", "halo copy", "g2p water", "g2p soil", "outflow", "inlet", "migrate"]
+               "boundary", "halo copy", "g2p water", "g2p soil", "outflow", "inlet", "migrate", "bed shear"]
 CHECKS = ["dt limit", "blow-up check"]
 # The step phases without MPI, and the communication phases (whose time less their wait is their
 # own work): node_scaling.py's and comm_model.py's breakdown.
 COMPUTE_PHASES = ["grid", "stresses", "p2g water", "p2g soil", "grid solve", "boundary", "g2p water", "g2p soil",
-                  "inlet"]
+                  "inlet", "bed shear"]
 COMM_PHASES = ["halo plan", "halo sum", "halo copy", "outflow", "migrate"]
 
 

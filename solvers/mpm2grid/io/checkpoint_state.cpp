@@ -38,6 +38,7 @@ void write_species(checkpoint::Writer& w, const std::string& s, const Particles<
   w.write<double>(s + "/log_jp", P.log_jp);
   w.write<double>(s + "/saturation", P.saturation);
   w.write<double>(s + "/load", flat(P.load));
+  w.write<double>(s + "/eroded", P.eroded);
   std::vector<long long> id(P.id.begin(), P.id.end());
   w.write<long long>(s + "/id", id);
 }
@@ -54,11 +55,12 @@ void read_species(checkpoint::Reader& r, const std::string& s, Particles<Dim>& P
   P.log_jp = r.read<double>(s + "/log_jp");
   P.saturation = r.read<double>(s + "/saturation");
   unflatten(r.read<double>(s + "/load"), P.load, s + "/load");
+  P.eroded = r.read<double>(s + "/eroded");
   const auto id = r.read<long long>(s + "/id");
   P.id.assign(id.begin(), id.end());
   const std::size_t n = P.x.size();
   for (std::size_t m : {P.v.size(), P.C.size(), P.mass.size(), P.volume0.size(), P.F.size(), P.J.size(),
-                        P.log_jp.size(), P.saturation.size(), P.load.size(), P.id.size()})
+                        P.log_jp.size(), P.saturation.size(), P.load.size(), P.eroded.size(), P.id.size()})
     if (m != n) throw LibraryError("checkpoint species '" + s + "' has arrays of different lengths");
 }
 

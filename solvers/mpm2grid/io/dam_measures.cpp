@@ -10,7 +10,7 @@ template <int Dim>
 long long count_within(const Particles<Dim>& P, const std::vector<Region>& regions, double margin) {
   long long n = 0;
   for (std::size_t p = 0; p < P.size(); ++p)
-    n += std::any_of(regions.begin(), regions.end(),
+    n += !is_suspended(P.eroded[p]) && std::any_of(regions.begin(), regions.end(),
                      [&](const Region& r) { return r.template contains<Dim>(P.x[p], margin); });
   return n;
 }
@@ -20,7 +20,9 @@ SoilColumns soil_columns(const Particles<Dim>& soil, double x0, double y0, doubl
                          double particle_fill) {
   SoilColumns cells{
       x0, y0, h, columns, rows, particle_fill, std::vector<double>(static_cast<std::size_t>(columns * rows), 0.0)};
-  for (const auto& x : soil.x) {
+  for (std::size_t p = 0; p < soil.size(); ++p) {
+    if (is_suspended(soil.eroded[p])) continue;
+    const auto& x = soil.x[p];
     const auto c = static_cast<long>(std::floor((x[0] - x0) / h)), r = static_cast<long>(std::floor((x[1] - y0) / h));
     if (c >= 0 && c < columns && r >= 0 && r < rows) cells.count[static_cast<std::size_t>(c * rows + r)] += 1;
   }

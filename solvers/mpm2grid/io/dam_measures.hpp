@@ -8,23 +8,23 @@
 // overlaps the dam's footprint. The eroded volume is
 //   V_eroded(t) = s^d (N_0 - number of soil particles still in the grown section),
 // with N_0 the number at the start (counted, so that a dam that lost nothing reads exactly 0 on
-// any number of ranks): soil carried off the dam, wherever it went (down the
-// slope, onto the run-out, out through the outlet). Elastic settling and bulging by less than
-// s/2 erodes nothing; soil that slides down the face and comes to rest outside the section
-// counts as eroded, soil moved from one place of the section to another does not. In m^3, m^2
-// (per metre) in 2D.
+// any number of ranks) and detached soil (erosion/bed_shear.hpp) never counted as in: soil
+// carried off the dam, wherever it went (down the slope, onto the run-out, out through the
+// outlet). Elastic settling and bulging by less than s/2 erodes nothing; soil that slides down
+// the face and comes to rest outside the section counts as eroded, soil moved from one place of
+// the section to another does not. In m^3, m^2 (per metre) in 2D.
 //
-// Crest profile. The soil surface per column of width h along x (columns [x0 + c h,
-// x0 + (c + 1) h), c = 0, 1, ...; in 3D over the whole depth), read from the soil's fill of the
-// column's cells (rows [y0 + r h, y0 + (r + 1) h)): the as-placed volume of the particles in a
-// cell over the cell's volume (h^2 per metre in 2D, h^2 times the domain's depth in 3D), 1 for a
-// cell of soil as seeded. From the column's lowest cell with soil upwards the surface rises by
-// each cell's fill (at most 1) up to and including the first cell filled half or less, and
-// stops there: soil as seeded reads its height to a lattice row, while grains strewn above the
-// dam (a particle here and there, one-particle filaments, which fill a cell by 1/4 or 1/2 at two
-// particles per cell and axis) add at most half a cell instead of lifting the crest to the
-// highest grain. Columns without soil have no entry. The crest height is the highest surface
-// above the floor.
+// Crest profile. The soil surface (detached soil left out) per column of width h along x
+// (columns [x0 + c h, x0 + (c + 1) h), c = 0, 1, ...; in 3D over the whole depth), read from the
+// soil's fill of the column's cells (rows [y0 + r h, y0 + (r + 1) h)): the as-placed volume of
+// the particles in a cell over the cell's volume (h^2 per metre in 2D, h^2 times the domain's
+// depth in 3D), 1 for a cell of soil as seeded. From the column's lowest cell with soil upwards
+// the surface rises by each cell's fill (at most 1) up to and including the first cell filled
+// half or less, and stops there: soil as seeded reads its height to a lattice row, while grains
+// strewn above the dam (a particle here and there, one-particle filaments, which fill a cell by
+// 1/4 or 1/2 at two particles per cell and axis) add at most half a cell instead of lifting the
+// crest to the highest grain. Columns without soil have no entry. The crest height is the
+// highest surface above the floor.
 #include <vector>
 
 #include "solvers/mpm2grid/particles/particles.hpp"

@@ -30,6 +30,12 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
       comm_(std::move(comm)) {
   if (s_.inlet) inlet_.emplace(*s_.inlet);
   if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, grid_);
+  if (s_.erosion.on && !s_.bed_shear.on())
+    throw std::invalid_argument("the excess-stress erosion needs the bed shear (a Manning n > 0)");
+  if (s_.erosion.on && s_.forces == ForceScheme::implicit_end)
+    throw std::invalid_argument("the excess-stress erosion works with the explicit forces");
+  if (s_.bed_shear.on())
+    bed_shear_.emplace(s_.walls, s_.h, s_.water.density, s_.soil.density, s_.bed_shear, s_.erosion, s_.gravity);
   if (s_.forces == ForceScheme::implicit_end) {
     if (!comm_) throw std::invalid_argument("the implicit forces' Newton-Krylov solve needs a communicator");
     if (s_.drag != DragScheme::lumped || s_.mixture)
@@ -197,6 +203,11 @@ void Simulation<Dim>::step(double dt) {
   if (dd_) {
     auto timed = phase(StepPhase::balance);
     if (dd_->balance(steps_, water_, soil_)) keep_known_stresses();
+  }
+  if (bed_shear_) {
+    auto timed = phase(StepPhase::bed_shear);
+    bed_shear_->measure(water_, soil_, dd_ ? &dd_->comm() : nullptr);
+    bed_shear_->erode(soil_, dt);
   }
   build_grid();
   {
@@ -445,6 +456,22 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
   if (s_.soil.flip > 0) v_before_ = soil_.v;
   grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_fill_, &soil_.saturation, &fold_);
   if (s_.soil.flip > 0) blend_flip(soil_, soil_nodes_, soil_before_, fold_, s_.soil.flip);
+  if (s_.erosion.on) carry_suspended();
+}
+
+// The detached (suspended) soil particles move with the water: v_p and C_p from the water grid.
+template <int Dim>
+void Simulation<Dim>::carry_suspended() {
+  std::vector<std::size_t> carried;
+  flip_probe_.x.clear();
+  for (std::size_t p = 0; p < soil_.size(); ++p)
+    if (bed_shear_->suspended(soil_, p)) carried.push_back(p), flip_probe_.x.push_back(soil_.x[p]);
+  if (carried.empty()) return;
+  flip_probe_.v.resize(carried.size());
+  flip_probe_.C.resize(carried.size());
+  grid_to_particles_each<VelocityGradient::none>(flip_probe_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
+                                                 [](std::size_t) {});
+  for (std::size_t k = 0; k < carried.size(); ++k) soil_.v[carried[k]] = flip_probe_.v[k], soil_.C[carried[k]] = flip_probe_.C[k];
 }
 
 // A species' home blocks before the move (home_before_), and after it which particles it took to
@@ -477,6 +504,11 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   // solve takes the same J^; model/implicit_forces.cpp).
   const bool implicit = s_.forces == ForceScheme::implicit_end;
   water_velocities();
+  if (bed_shear_) {
+    timed.emplace(times_, StepPhase::bed_shear, wait_clock());
+    bed_shear_->brake(water_, dt);
+    timed.emplace(times_, StepPhase::g2p_water, wait_clock());
+  }
   if (s_.mixture) mixture_volume_rates(dt);  // at the positions the water was spread from
   if (dd_) record_homes(water_);
   for (std::size_t p = 0; p < water_.size(); ++p) {
@@ -489,6 +521,9 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   wall_water_fill();
   soil_velocities();  // leaves the sums sum_i w_ip m_w,i / I_i in `saturation`
   const double full = s_.water.density * std::pow(grid_.spacing(), Dim) * s_.soil.porosity;  // kg in a node's pores
+  // With the excess-stress erosion the cohesion does not fall with the saturation; detached
+  // (suspended) particles carry no stress and sink through the water.
+  const bool weakens = !s_.erosion.on;
   known_stress_.resize(soil_.size());
   if (dd_) record_homes(soil_);
   // The return mappings kBatch particles at a time (HenckyDruckerPrager::project_all), the last
@@ -504,7 +539,8 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
         continue;
       }
       const std::size_t p = first + static_cast<std::size_t>(n);
-      soil_.saturation[p] = saturation[n] = std::clamp(soil_.saturation[p] / full, 0.0, 1.0);
+      soil_.saturation[p] = std::clamp(soil_.saturation[p] / full, 0.0, 1.0);
+      saturation[n] = weakens ? soil_.saturation[p] : 0.0;
       soil_.x[p] += dt * soil_.v[p];
       trial[n] = trial_deformation(grad_v_[p], soil_.F[p], dt);
       log_jp[n] = soil_.log_jp[p];
@@ -517,6 +553,12 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
       soil_.log_jp[p] = r[n].log_jp;
       known_stress_[p].known = r[n].has_stress;
       if (r[n].has_stress) known_stress_[p].F = r[n].F, known_stress_[p].tau = r[n].stress;
+      if (s_.erosion.on && bed_shear_->suspended(soil_, p)) {
+        soil_.F[p] = Mat<Dim>::Identity();
+        soil_.log_jp[p] = 0;
+        known_stress_[p].known = false;
+        bed_shear_->settle(soil_, p, dt);
+      }
       s_.walls.clamp(soil_.x[p]);
     }
   }

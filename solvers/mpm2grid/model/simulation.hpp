@@ -20,6 +20,7 @@
 #include "solvers/mpm2grid/coupling/consistent_drag.hpp"
 #include "solvers/mpm2grid/coupling/drag_solve.hpp"
 #include "solvers/mpm2grid/decomposition/domain_decomposition.hpp"
+#include "solvers/mpm2grid/erosion/bed_shear.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/materials/hencky_drucker_prager.hpp"
 #include "solvers/mpm2grid/materials/weakly_compressible_water.hpp"
@@ -79,6 +80,10 @@ struct SimulationSettings {
   // 2 at h = 0.5 m eroded 0.06 m^2 in 10 s instead of the explicit forces' 1.0 (docs/mpm2grid.md,
   // "Implicit forces").
   bool plastic_solve = true;
+  // The water's friction on its beds and the soil's excess-stress erosion (erosion/bed_shear.hpp);
+  // with the erosion the soil keeps its cohesion when wet (its erosion is the closure's).
+  BedShearSettings bed_shear;
+  ExcessStressSettings erosion;
   double cfl = 0.4;                         // fraction of a cell a particle or a wave may cross per step
   double dt_max = 1e-3;                     // s
   std::optional<InletSettings<Dim>> inlet;  // water inlet on the x_low side, if any
@@ -140,6 +145,8 @@ class Simulation {
   // The implicit forces' last Newton-Krylov solve and iteration counts (zero with explicit forces).
   const ImplicitState<Dim>& implicit() const { return implicit_; }
   long long steps() const { return steps_; }
+  // The bed-shear closure's columns as of the last step's start, or nullptr without the closure.
+  const BedShear<Dim>* bed_shear() const { return bed_shear_ ? &*bed_shear_ : nullptr; }
   // This rank's time per phase of step() since the simulation was built (model/step_timers.hpp).
   const StepTimes& step_times() const { return times_; }
 
@@ -205,6 +212,7 @@ class Simulation {
                   double share);
   void wall_water_fill();
   void soil_velocities();
+  void carry_suspended();
   void record_homes(const Particles<Dim>& P);
   void mark_moved(const Particles<Dim>& P, std::vector<char>& left) const;
   // Times the rest of the enclosing scope as `phase` (waits counted over several ranks).
@@ -248,6 +256,7 @@ class Simulation {
   Outflow<Dim> outflow_;
   std::optional<Inlet<Dim>> inlet_;
   std::optional<DomainDecomposition<Dim>> dd_;
+  std::optional<BedShear<Dim>> bed_shear_;
   double time_ = 0;
   long long steps_ = 0;
   StepTimes times_;

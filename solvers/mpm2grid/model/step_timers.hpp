@@ -30,11 +30,13 @@ enum class StepPhase : int {
   outflow,     // particles leaving through open sides, the outflow record
   inlet,       // the inlet's new particles
   migrate,     // particles to the owners of their new home blocks
+  bed_shear,   // the bed-shear closure's columns (two reductions over them) and the erosion
 };
-inline constexpr std::size_t kStepPhases = 15;
+inline constexpr std::size_t kStepPhases = 16;
 inline constexpr std::array<const char*, kStepPhases> kStepPhaseNames{
     "balance", "grid",     "halo plan",  "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
-    "boundary", "halo copy", "g2p water", "g2p soil", "outflow",   "inlet",    "migrate"};
+    "boundary", "halo copy", "g2p water", "g2p soil", "outflow",   "inlet",    "migrate",
+    "bed shear"};
 
 struct StepTimes {
   std::array<double, kStepPhases> seconds{};  // per phase, summed over the steps

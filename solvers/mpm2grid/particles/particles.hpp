@@ -4,11 +4,15 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "solvers/mpm2grid/kernels/bspline.hpp"
 
 namespace suite::mpm2grid {
+
+// A soil particle's eroded depth that marks it detached from the bed (erosion/bed_shear.hpp).
+inline bool is_suspended(double eroded) { return eroded == std::numeric_limits<double>::infinity(); }
 
 template <int Dim>
 struct Particles {
@@ -23,6 +27,8 @@ struct Particles {
   std::vector<double> saturation;  // soil: water fraction seen from the water grid, [0, 1]
   std::vector<Vec<Dim>> load;      // soil: external force at full load, N (a surcharge on the
                                    // particles of a region's upper surface; zero elsewhere)
+  std::vector<double> eroded;      // soil: depth the bed shear has eroded off the particle, m;
+                                   // infinity once detached: suspended (erosion/bed_shear.hpp)
   std::vector<std::int64_t> id;    // the particle's number, unique within its species over the
                                    // run and kept wherever it goes (ParaView tracks particles by it)
   std::int64_t next_id = 0;        // the number add() gives next (seeding numbers the lattice
@@ -34,7 +40,7 @@ struct Particles {
   // permutation to each).
   template <class Visit>
   void for_each_array(Visit&& f) {
-    f(x), f(v), f(C), f(mass), f(volume0), f(F), f(J), f(log_jp), f(saturation), f(load), f(id);
+    f(x), f(v), f(C), f(mass), f(volume0), f(F), f(J), f(log_jp), f(saturation), f(load), f(eroded), f(id);
   }
 
   // Room for n particles in every array: adding up to n reallocates none.
@@ -53,6 +59,7 @@ struct Particles {
     log_jp.push_back(0.0);
     saturation.push_back(0.0);
     load.push_back(Vec<Dim>::Zero());
+    eroded.push_back(0.0);
     id.push_back(next_id++);
   }
 
@@ -75,7 +82,7 @@ struct Particles {
 
   // A particle's whole state as kPacked doubles (for moving it to another rank), and back (the id
   // as a double: exact below 2^53).
-  static constexpr int kPacked = 3 * Dim + 2 * Dim * Dim + 6;
+  static constexpr int kPacked = 3 * Dim + 2 * Dim * Dim + 7;
   void pack(std::size_t p, std::vector<double>& out) const {
     const auto put = [&](const double* a, int n) { out.insert(out.end(), a, a + n); };
     put(x[p].data(), Dim), put(v[p].data(), Dim), put(C[p].data(), Dim * Dim);
@@ -83,7 +90,7 @@ struct Particles {
     put(F[p].data(), Dim * Dim);
     out.insert(out.end(), {J[p], log_jp[p], saturation[p]});
     put(load[p].data(), Dim);
-    out.push_back(static_cast<double>(id[p]));
+    out.insert(out.end(), {eroded[p], static_cast<double>(id[p])});
   }
   // Appends the particle packed at `in` (kPacked doubles).
   void add_packed(const double* in) {
@@ -104,7 +111,8 @@ struct Particles {
     Vec<Dim> lp;
     take(lp, Dim);
     load.push_back(lp);
-    id.push_back(static_cast<std::int64_t>(in[0]));
+    eroded.push_back(in[0]);
+    id.push_back(static_cast<std::int64_t>(in[1]));
   }
 
   double total_mass() const {

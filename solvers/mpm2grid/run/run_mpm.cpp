@@ -57,7 +57,9 @@ std::vector<io::CsvColumn> series_columns() {
           {"crest_height", "m"},
           {"kinetic_energy", "J"},
           {"water_particles", ""},
-          {"soil_particles", ""}};
+          {"soil_particles", ""},
+          {"bed_shear_max", "Pa"},  // the bed-shear closure's largest shear at the last step's start (0 without it)
+          {"suspended_soil_volume", volume}};  // as placed, of the soil the excess-stress erosion detached
 }
 
 // profiles.csv: the crest profile (io/dam_measures.hpp) at every particle output time.
@@ -317,12 +319,22 @@ class MpmRun {
                                   crest_height(profile(), floor()),
                                   sim_.kinetic_energy(),
                                   static_cast<double>(count(sim_.water())),
-                                  static_cast<double>(count(sim_.soil()))};
+                                  static_cast<double>(count(sim_.soil())),
+                                  sim_.bed_shear() ? sim_.bed_shear()->largest_shear() : 0.0,
+                                  suspended_volume()};
     if (csv_) csv_->append(row);
   }
 
   // Over all ranks. COLLECTIVE.
   double mass(const Particles<Dim>& P) const { return sim_.sum_over_ranks(P.total_mass()); }
+  double suspended_volume() const {
+    const auto* b = sim_.bed_shear();
+    double m = 0;
+    if (b && scene_.simulation.erosion.on)
+      for (std::size_t p = 0; p < sim_.soil().size(); ++p)
+        if (b->suspended(sim_.soil(), p)) m += sim_.soil().mass[p];
+    return sim_.sum_over_ranks(m) / scene_.simulation.soil.density;
+  }
   long long count(const Particles<Dim>& P) const { return comm_.sum(static_cast<long long>(P.size())); }
 
   double floor() const { return scene_.simulation.walls.lo[1]; }

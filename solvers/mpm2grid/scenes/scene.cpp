@@ -66,6 +66,20 @@ std::vector<Region> read_regions(const config::Section& species, int dim, double
   return regions;
 }
 
+// The soil's erosion model: the dissertation's cohesion falling with the saturation (the default),
+// or the excess-stress rate kd (tau - tau_c) under the bed shear, with the breach model's keys and
+// units (solvers/breach/soil/soil.hpp) and the detached soil's settling velocity.
+void read_erosion(const config::Section& soil, ExcessStressSettings& e) {
+  e.on = soil.choice("erosion", {"saturation_cohesion", "excess_stress"}, "saturation_cohesion") == "excess_stress";
+  for (const char* key : {"erodibility", "critical_shear_stress", "settling_velocity"})
+    if (!e.on && soil.has(key))
+      soil.reject(key, "belongs to the excess-stress erosion; add erosion: excess_stress or drop it");
+  if (!e.on) return;
+  e.kd = soil.quantity("erodibility", "m^3/(N s)", Range::at_least(0));
+  e.tau_c = soil.quantity("critical_shear_stress", "Pa", 0.0, Range::at_least(0));
+  e.settling_velocity = soil.quantity("settling_velocity", "m/s", Range::at_least(0));
+}
+
 WallKind wall_kind(const config::Section& walls, const std::string& key) {
   const auto k = walls.choice(key, {"slip", "sticky", "friction", "open"}, "slip");
   return k == "slip" ? WallKind::slip : k == "sticky" ? WallKind::sticky : k == "friction" ? WallKind::friction
@@ -176,6 +190,7 @@ Scene<Dim> read_scene(const config::Config& cfg) {
       sim.soil.material.cohesion =
           cohesion_of_strain_shift(c_C, sim.soil.material.template bulk_modulus<Dim>(), phi);
     }
+    read_erosion(*s, sim.erosion);
     sim.soil.porosity = s->number("porosity", 0.4, Range{0.0, 1.0, true, true});
     sim.soil.conductivity = s->quantity("conductivity", "m/s", 1e-4, Range::positive());
     sc.soil_regions = read_regions(*s, Dim, lo[1], true, root.has("water"));
@@ -185,6 +200,12 @@ Scene<Dim> read_scene(const config::Config& cfg) {
     }
     sim.load_ramp = s->quantity("surcharge_ramp", "s", 0.0, Range::at_least(0));
   }
+  // The water's friction on its beds (erosion/bed_shear.hpp), which the excess-stress erosion needs.
+  if (const auto bed = root.optional_section("bed_shear"))
+    sim.bed_shear.manning_n = bed->number("manning_n", Range::positive());  // s/m^(1/3), SI
+  if (sim.erosion.on && !sim.bed_shear.on())
+    root.section("soil").reject("erosion", "the excess-stress erosion needs the flow's shear on the bed: add "
+                                           "bed_shear: {manning_n: N} (e.g. 0.016 for bare soil)");
   if (const auto inlet = root.optional_section("inlet")) {
     if (!root.has("water")) root.reject("inlet", "an inlet needs the water: section (density, bulk_modulus, regions)");
     sim.inlet = read_inlet<Dim>(*inlet, sim.walls.lo, sim.walls.hi, sim.h / sc.particles_per_cell, sim.water.density);
@@ -217,6 +238,9 @@ Scene<Dim> read_scene(const config::Config& cfg) {
                                         drag));
     if (sim.mixture) root.reject("forces", "the implicit forces do not include the mixture; drop mixture: true or set "
                                            "forces: explicit");
+    if (sim.erosion.on)
+      root.reject("forces", "the implicit forces do not include the excess-stress erosion; set forces: explicit or "
+                            "soil.erosion: saturation_cohesion");
     const auto implicit = root.section_or_empty("implicit");
     sim.clamp_passes = static_cast<int>(implicit.integer("clamp_passes", 1, 1, 100));
     sim.plastic_solve = implicit.choice("plasticity", {"in_solve", "after_solve"}, "in_solve") == "in_solve";

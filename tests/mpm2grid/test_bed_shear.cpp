@@ -1,0 +1,220 @@
+// The bed-shear closure and the excess-stress erosion (erosion/bed_shear.hpp; issue 27, rungs 2a
+// and 2b of its validation ladder), on open-channel flow down a slope S = sin(theta): gravity
+// tilted by theta against the grid, the floor the bed, an inlet at x = 0 feeding q per metre at
+// Manning's normal depth, the channel's end open. In steady uniform flow gravity's pull along the
+// bed balances the bed shear, tau = rho g d S (wide channel: the hydraulic radius is the depth),
+// and Manning's law, tau = rho g0 n^2 u^2 / d^(1/3), then gives the normal flow
+// q = d_n^(5/3) sqrt(S g / g0) / n; the channel starts in it, fed at d_n = 0.12 m.
+//   2a. Rigid rough bed: after 2 s of flow from the normal state the flow in the middle of the
+//       channel is steady and uniform at three resolutions (3, 6 and 12 cells over the depth):
+//       the closure's shear equals rho g d S within 5% (the issue's bound; it holds only if the
+//       friction takes out of the water exactly the shear it reports), and depth and velocity
+//       equal Manning's normal values within 5%.
+//   2b. Cohesive bed: a soil layer under the flow erodes at kd (tau - tau_c): the bed's lowering in
+//       the middle of the channel (its surface, measured from the bed particles, plus the part of
+//       the top layer eroded so far) equals the integral of kd (tau - tau_c) over the closure's
+//       shear at every step within 10% (the issue's bound; layers of a particle's side come off one
+//       at a time), at three slopes (tau from about 8 to 30 Pa); with tau_c above the flow's shear
+//       nothing erodes at all.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "solvers/mpm2grid/model/simulation.hpp"
+
+namespace suite::mpm2grid {
+namespace {
+
+constexpr double kG = 9.81, kG0 = 9.80665, kRho = 1000;
+
+struct Channel {
+  double h = 0.02;          // grid spacing, m
+  double slope = 0.02;      // S = sin(theta)
+  double manning_n = 0.02;  // s/m^(1/3)
+  // The normal depth, m: a whole number of particle rows at every resolution below, so that
+  // the inlet's section (whole rows) carries the normal flow.
+  double depth = 0.12;
+  double length = 2.0;      // m
+  double soil = 0;          // thickness of a soil layer on the floor, m (0: the rigid floor is the bed)
+  double kd = 0, tau_c = 0;
+
+  // The discharge per metre of the normal flow, m^2/s.
+  double q() const { return std::pow(depth, 5.0 / 3.0) * std::sqrt(slope * kG / kG0) / manning_n; }
+};
+
+SimulationSettings<2> settings(const Channel& c) {
+  SimulationSettings<2> s;
+  s.h = c.h;
+  s.walls.lo = {0, 0};
+  s.walls.hi = {c.length, 1.0};
+  s.walls.kind[0] = {WallKind::slip, WallKind::open};
+  // The soil layer held by a sticky floor (the bed erodes; it does not slide).
+  s.walls.kind[1] = {c.soil > 0 ? WallKind::sticky : WallKind::slip, WallKind::slip};
+  s.walls.friction = 0.7;
+  s.gravity = {kG * c.slope, -kG * std::sqrt(1 - c.slope * c.slope)};
+  s.water.density = kRho;
+  s.water.eos.bulk_modulus = 5e4;  // sound speed 18.7 m/s, about 10 times the flow
+  s.soil.density = 2000;
+  s.soil.porosity = 0.4;
+  s.soil.conductivity = 1e-3;
+  s.soil.material = HenckyDruckerPrager::from_young(2e6, 0.3, 0.6, 2e4, true);
+  s.bed_shear.manning_n = c.manning_n;
+  if (c.soil > 0) s.erosion = {.on = true, .kd = c.kd, .tau_c = c.tau_c, .settling_velocity = 0.01};
+  s.dt_max = 1e-3;
+  InletSettings<2> in;
+  in.height = c.depth;
+  in.spacing = c.h / 2;
+  in.density = kRho;
+  in.lo = {0, c.soil};  // the inlet's section starts on the bed
+  in.hi = s.walls.hi;
+  in.discharge = Hydrograph::constant(c.q());
+  s.inlet = in;
+  return s;
+}
+
+// The channel at its normal state: the soil layer (saturated, a water particle in its pores) and
+// the water above it at the inlet's depth and velocity, hydrostatic normal to the bed.
+void seed(const Channel& c, Simulation<2>& sim) {
+  const double s = c.h / 2, volume = s * s, cos_theta = std::sqrt(1 - c.slope * c.slope);
+  const auto* inlet = sim.inlet();
+  const double top = c.soil + inlet->section_height(), speed = inlet->velocity(0);
+  const auto& eos = sim.settings().water.eos;
+  for (double y = s / 2; y < top; y += s)
+    for (double x = s / 2; x < c.length; x += s) {
+      const double p = kRho * kG * cos_theta * (top - y);
+      const double J = std::pow(1 + p / eos.bulk_modulus, -1 / eos.gamma);
+      const bool soil = y < c.soil;
+      if (soil) sim.soil().add({x, y}, Vec<2>::Zero(), sim.settings().soil.density * volume, volume);
+      sim.water().add({x, y}, soil ? Vec<2>::Zero() : Vec<2>(speed, 0), kRho * volume, volume / J);
+      sim.water().J.back() = J;
+    }
+}
+
+// The columns whose centres lie in the channel's middle, [0.4, 0.8] of its length.
+std::vector<std::size_t> middle(const Channel& c, const BedShear<2>& b) {
+  std::vector<std::size_t> m;
+  for (std::size_t k = 0; k < b.columns().size(); ++k) {
+    const double x = b.column_centre(k)[0];
+    if (x > 0.4 * c.length && x < 0.8 * c.length) m.push_back(k);
+  }
+  return m;
+}
+
+struct Flow {
+  double depth = 0, speed = 0, shear = 0;
+};
+
+Flow mean_flow(const Channel& c, const BedShear<2>& b) {
+  Flow f;
+  const auto cols = middle(c, b);
+  for (auto k : cols) {
+    const auto& col = b.columns()[k];
+    f.depth += col.depth, f.speed += col.velocity.norm(), f.shear += col.shear;
+  }
+  const auto n = static_cast<double>(cols.size());
+  return {f.depth / n, f.speed / n, f.shear / n};
+}
+
+TEST(BedShear, UniformFlowDownARoughInclineBalancesGravity) {
+  for (double h : {0.04, 0.02, 0.01}) {
+    Channel c;
+    c.h = h;
+    Simulation<2> sim(settings(c));
+    seed(c, sim);
+    const double dn = c.depth, un = c.q() / dn;
+    Flow before;
+    while (sim.time() < 2.0) {
+      sim.step(std::min(sim.stable_dt().dt, 2.0 - sim.time()));
+      if (before.depth == 0 && sim.time() >= 1.5) before = mean_flow(c, *sim.bed_shear());
+    }
+    const Flow f = mean_flow(c, *sim.bed_shear());
+    const double gravity_pull = kRho * kG * f.depth * c.slope;
+    SCOPED_TRACE(::testing::Message() << "h = " << h << ": depth " << f.depth << " (normal " << dn << "), speed "
+                                      << f.speed << " (" << un << "), shear " << f.shear << " Pa, rho g d S "
+                                      << gravity_pull << " Pa; at 1.5 s speed " << before.speed);
+    std::printf("h = %g m: depth %.4f m (normal %.4f), speed %.4f m/s (%.4f), shear %.3f Pa, rho g d S %.3f Pa\n", h,
+                f.depth, dn, f.speed, un, f.shear, gravity_pull);
+    EXPECT_NEAR(f.shear / gravity_pull, 1.0, 0.05);
+    EXPECT_NEAR(f.depth / dn, 1.0, 0.05);
+    EXPECT_NEAR(f.speed / un, 1.0, 0.05);
+    EXPECT_NEAR(f.speed / before.speed, 1.0, 0.02);  // steady
+  }
+}
+
+// The bed's lowering in the middle columns (m) from its seeded surface: the drop of the surface
+// (the highest top of the column's bed particles) plus the eroded depth of the top layer's
+// particles (their mean per column), read from the particles as they are.
+double lowering(const Channel& c, const Simulation<2>& sim) {
+  const auto& b = *sim.bed_shear();
+  const auto& soil = sim.soil();
+  const std::size_t n = b.columns().size();
+  std::vector<double> bed(n, 0.0), partial(n, 0.0), exposed(n, 0.0);
+  for (std::size_t p = 0; p < soil.size(); ++p)
+    if (!b.suspended(soil, p)) {
+      double& top = bed[b.column_of(soil.x[p])];
+      top = std::max(top, soil.x[p][1] + b.side(soil, p) / 2);
+    }
+  for (std::size_t p = 0; p < soil.size(); ++p) {
+    const std::size_t k = b.column_of(soil.x[p]);
+    if (b.suspended(soil, p) || soil.x[p][1] + b.side(soil, p) < bed[k]) continue;
+    partial[k] += soil.eroded[p], exposed[k] += 1;
+  }
+  double sum = 0;
+  const auto cols = middle(c, b);
+  for (auto k : cols) sum += c.soil - bed[k] + (exposed[k] > 0 ? partial[k] / exposed[k] : 0.0);
+  return sum / static_cast<double>(cols.size());
+}
+
+TEST(BedShear, CohesiveBedErodesAtTheExcessStressRate) {
+  for (double slope : {0.02, 0.03, 0.04}) {
+    Channel c;
+    c.slope = slope;
+    c.soil = 0.15;
+    c.kd = 4e-3;  // m^3/(N s): an erodible test soil, two to seven layers of 1 cm in the run
+    c.tau_c = 2;
+    Simulation<2> sim(settings(c));
+    seed(c, sim);
+    double expected = 0, tau_mean = 0;
+    long steps = 0;
+    const auto cols = [&] { return middle(c, *sim.bed_shear()); };
+    while (sim.time() < 1.5) {
+      const double dt = std::min(sim.stable_dt().dt, 1.5 - sim.time());
+      sim.step(dt);
+      const auto& b = *sim.bed_shear();
+      // The rate this step's erosion used, in the middle columns.
+      double rate = 0, tau = 0;
+      for (auto k : cols()) {
+        const auto& col = b.columns()[k];
+        rate += col.depth > 0 ? c.kd * std::max(0.0, col.shear - c.tau_c) * col.secant : 0.0;
+        tau += col.shear;
+      }
+      expected += dt * rate / static_cast<double>(cols().size());
+      tau_mean += tau / static_cast<double>(cols().size()), ++steps;
+    }
+    const double measured = lowering(c, sim);
+    SCOPED_TRACE(::testing::Message() << "S = " << slope << ": mean shear " << tau_mean / steps << " Pa, lowering "
+                                      << measured << " m, kd (tau - tau_c) integrated " << expected << " m");
+    std::printf("S = %g: mean shear %.2f Pa, lowering %.5f m, kd (tau - tau_c) integrated %.5f m\n", slope,
+                tau_mean / static_cast<double>(steps), measured, expected);
+    EXPECT_GT(expected, c.h);  // at least two layers came off
+    EXPECT_NEAR(measured / expected, 1.0, 0.10);
+  }
+}
+
+TEST(BedShear, NothingErodesBelowTheCriticalStress) {
+  Channel c;
+  c.soil = 0.15;
+  c.kd = 3e-3;
+  c.tau_c = 1000;
+  Simulation<2> sim(settings(c));
+  seed(c, sim);
+  while (sim.time() < 0.5) sim.step(std::min(sim.stable_dt().dt, 0.5 - sim.time()));
+  EXPECT_GT(sim.bed_shear()->largest_shear(), 5.0);
+  for (std::size_t p = 0; p < sim.soil().size(); ++p) ASSERT_EQ(sim.soil().eroded[p], 0.0) << "particle " << p;
+}
+
+}  // namespace
+}  // namespace suite::mpm2grid
