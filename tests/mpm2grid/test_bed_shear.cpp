@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -45,16 +46,21 @@ struct Channel {
   double q() const { return std::pow(depth, 5.0 / 3.0) * std::sqrt(slope * kG / kG0) / manning_n; }
 };
 
-SimulationSettings<2> settings(const Channel& c) {
-  SimulationSettings<2> s;
+// The channel in 2D, or in 3D over `width` (m) across z between slip walls.
+template <int Dim>
+SimulationSettings<Dim> settings(const Channel& c, double width = 0) {
+  SimulationSettings<Dim> s;
   s.h = c.h;
-  s.walls.lo = {0, 0};
-  s.walls.hi = {c.length, 1.0};
+  s.walls.lo.setZero();
+  s.walls.hi[0] = c.length, s.walls.hi[1] = 1.0;
+  if constexpr (Dim == 3) s.walls.hi[2] = width;
   s.walls.kind[0] = {WallKind::slip, WallKind::open};
   // The soil layer held by a sticky floor (the bed erodes; it does not slide).
   s.walls.kind[1] = {c.soil > 0 ? WallKind::sticky : WallKind::slip, WallKind::slip};
+  if constexpr (Dim == 3) s.walls.kind[2] = {WallKind::slip, WallKind::slip};
   s.walls.friction = 0.7;
-  s.gravity = {kG * c.slope, -kG * std::sqrt(1 - c.slope * c.slope)};
+  s.gravity.setZero();
+  s.gravity[0] = kG * c.slope, s.gravity[1] = -kG * std::sqrt(1 - c.slope * c.slope);
   s.water.density = kRho;
   s.water.eos.bulk_modulus = 5e4;  // sound speed 18.7 m/s, about 10 times the flow
   s.soil.density = 2000;
@@ -64,12 +70,12 @@ SimulationSettings<2> settings(const Channel& c) {
   s.bed_shear.manning_n = c.manning_n;
   if (c.soil > 0) s.erosion = {.on = true, .kd = c.kd, .tau_c = c.tau_c, .settling_velocity = 0.01};
   s.dt_max = 1e-3;
-  InletSettings<2> in;
+  InletSettings<Dim> in;
   in.height = c.depth;
   in.spacing = c.h / 2;
   in.density = kRho;
-  in.lo = {0, c.soil};  // the inlet's section starts on the bed
-  in.hi = s.walls.hi;
+  in.lo = s.walls.lo, in.hi = s.walls.hi;
+  in.lo[1] = c.soil;  // the inlet's section starts on the bed
   in.discharge = Hydrograph::constant(c.q());
   s.inlet = in;
   return s;
@@ -77,24 +83,32 @@ SimulationSettings<2> settings(const Channel& c) {
 
 // The channel at its normal state: the soil layer (saturated, a water particle in its pores) and
 // the water above it at the inlet's depth and velocity, hydrostatic normal to the bed.
-void seed(const Channel& c, Simulation<2>& sim) {
-  const double s = c.h / 2, volume = s * s, cos_theta = std::sqrt(1 - c.slope * c.slope);
+template <int Dim>
+void seed(const Channel& c, Simulation<Dim>& sim) {
+  const double s = c.h / 2, volume = std::pow(s, Dim), cos_theta = std::sqrt(1 - c.slope * c.slope);
   const auto* inlet = sim.inlet();
   const double top = c.soil + inlet->section_height(), speed = inlet->velocity(0);
   const auto& eos = sim.settings().water.eos;
-  for (double y = s / 2; y < top; y += s)
-    for (double x = s / 2; x < c.length; x += s) {
-      const double p = kRho * kG * cos_theta * (top - y);
-      const double J = std::pow(1 + p / eos.bulk_modulus, -1 / eos.gamma);
-      const bool soil = y < c.soil;
-      if (soil) sim.soil().add({x, y}, Vec<2>::Zero(), sim.settings().soil.density * volume, volume);
-      sim.water().add({x, y}, soil ? Vec<2>::Zero() : Vec<2>(speed, 0), kRho * volume, volume / J);
-      sim.water().J.back() = J;
-    }
+  const double width = Dim == 3 ? sim.settings().walls.hi[Dim - 1] : s;  // one layer in 2D
+  for (double z = s / 2; z < width; z += s)
+    for (double y = s / 2; y < top; y += s)
+      for (double x = s / 2; x < c.length; x += s) {
+        const double p = kRho * kG * cos_theta * (top - y);
+        const double J = std::pow(1 + p / eos.bulk_modulus, -1 / eos.gamma);
+        const bool soil = y < c.soil;
+        Vec<Dim> at = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
+        at[0] = x, at[1] = y;
+        if constexpr (Dim == 3) at[2] = z;
+        if (!soil) v[0] = speed;
+        if (soil) sim.soil().add(at, Vec<Dim>::Zero(), sim.settings().soil.density * volume, volume);
+        sim.water().add(at, v, kRho * volume, volume / J);
+        sim.water().J.back() = J;
+      }
 }
 
 // The columns whose centres lie in the channel's middle, [0.4, 0.8] of its length.
-std::vector<std::size_t> middle(const Channel& c, const BedShear<2>& b) {
+template <int Dim>
+std::vector<std::size_t> middle(const Channel& c, const BedShear<Dim>& b) {
   std::vector<std::size_t> m;
   for (std::size_t k = 0; k < b.columns().size(); ++k) {
     const double x = b.column_centre(k)[0];
@@ -107,7 +121,8 @@ struct Flow {
   double depth = 0, speed = 0, shear = 0;
 };
 
-Flow mean_flow(const Channel& c, const BedShear<2>& b) {
+template <int Dim>
+Flow mean_flow(const Channel& c, const BedShear<Dim>& b) {
   Flow f;
   const auto cols = middle(c, b);
   for (auto k : cols) {
@@ -118,29 +133,64 @@ Flow mean_flow(const Channel& c, const BedShear<2>& b) {
   return {f.depth / n, f.speed / n, f.shear / n};
 }
 
+// 2 s of the channel from its normal state: the flow in the middle then and at 1.5 s.
+template <int Dim>
+std::array<Flow, 2> run_channel(const Channel& c, double width = 0) {
+  Simulation<Dim> sim(settings<Dim>(c, width));
+  seed(c, sim);
+  Flow before;
+  while (sim.time() < 2.0) {
+    sim.step(std::min(sim.stable_dt().dt, 2.0 - sim.time()));
+    if (before.depth == 0 && sim.time() >= 1.5) before = mean_flow(c, *sim.bed_shear());
+  }
+  return {mean_flow(c, *sim.bed_shear()), before};
+}
+
+// Rung 2a's checks of the flow at 2 s (`f`) and at 1.5 s.
+void expect_normal_flow(const Channel& c, const Flow& f, const Flow& before, const char* what) {
+  const double dn = c.depth, un = c.q() / dn, gravity_pull = kRho * kG * f.depth * c.slope;
+  std::printf("%s, h = %g m: depth %.4f m (normal %.4f), speed %.4f m/s (%.4f; at 1.5 s %.4f), shear %.3f Pa, "
+              "rho g d S %.3f Pa\n",
+              what, c.h, f.depth, dn, f.speed, un, before.speed, f.shear, gravity_pull);
+  SCOPED_TRACE(::testing::Message() << what << ", h = " << c.h);
+  EXPECT_NEAR(f.shear / gravity_pull, 1.0, 0.05);
+  EXPECT_NEAR(f.depth / dn, 1.0, 0.05);
+  EXPECT_NEAR(f.speed / un, 1.0, 0.05);
+  EXPECT_NEAR(f.speed / before.speed, 1.0, 0.02);  // steady
+}
+
 TEST(BedShear, UniformFlowDownARoughInclineBalancesGravity) {
   for (double h : {0.04, 0.02, 0.01}) {
     Channel c;
     c.h = h;
-    Simulation<2> sim(settings(c));
-    seed(c, sim);
-    const double dn = c.depth, un = c.q() / dn;
-    Flow before;
-    while (sim.time() < 2.0) {
-      sim.step(std::min(sim.stable_dt().dt, 2.0 - sim.time()));
-      if (before.depth == 0 && sim.time() >= 1.5) before = mean_flow(c, *sim.bed_shear());
-    }
-    const Flow f = mean_flow(c, *sim.bed_shear());
-    const double gravity_pull = kRho * kG * f.depth * c.slope;
-    SCOPED_TRACE(::testing::Message() << "h = " << h << ": depth " << f.depth << " (normal " << dn << "), speed "
-                                      << f.speed << " (" << un << "), shear " << f.shear << " Pa, rho g d S "
-                                      << gravity_pull << " Pa; at 1.5 s speed " << before.speed);
-    std::printf("h = %g m: depth %.4f m (normal %.4f), speed %.4f m/s (%.4f), shear %.3f Pa, rho g d S %.3f Pa\n", h,
-                f.depth, dn, f.speed, un, f.shear, gravity_pull);
-    EXPECT_NEAR(f.shear / gravity_pull, 1.0, 0.05);
-    EXPECT_NEAR(f.depth / dn, 1.0, 0.05);
-    EXPECT_NEAR(f.speed / un, 1.0, 0.05);
-    EXPECT_NEAR(f.speed / before.speed, 1.0, 0.02);  // steady
+    const auto [f, before] = run_channel<2>(c);
+    expect_normal_flow(c, f, before, "2D");
+  }
+}
+
+// The same in 3D (columns over x and z), 4 cells across between slip walls.
+TEST(BedShear, UniformFlowDownARoughInclineIn3D) {
+  Channel c;
+  c.h = 0.04;
+  const auto [f, before] = run_channel<3>(c, 4 * c.h);
+  expect_normal_flow(c, f, before, "3D");
+}
+
+// The same flow over a saturated soil layer that does not erode (tau_c far above the flow's
+// shear): the target of the next step, failing today. The pore water, which the drag locks to
+// the soil, is a no-slip bed for the free water at the grid scale, and the transfers mix its zero
+// velocity into the free water's lowest cells every step. Measured at 2 s: speed 0.578 / 0.973 /
+// 1.133 m/s at h = 0.04 / 0.02 / 0.01 m against Manning's 1.721, depth 0.255 / 0.188 / 0.170 m,
+// the closure's shear 2.1 / 6.6 / 9.2 Pa against rho g d S 50.0 / 36.9 / 33.3 Pa.
+TEST(BedShear, DISABLED_UniformFlowOverAFirmSoilBed) {
+  for (double h : {0.04, 0.02, 0.01}) {
+    Channel c;
+    c.h = h;
+    c.soil = 0.12;
+    c.kd = 1e-3;
+    c.tau_c = 1000;
+    const auto [f, before] = run_channel<2>(c);
+    expect_normal_flow(c, f, before, "over a soil bed");
   }
 }
 
@@ -175,7 +225,7 @@ TEST(BedShear, CohesiveBedErodesAtTheExcessStressRate) {
     c.soil = 0.15;
     c.kd = 4e-3;  // m^3/(N s): an erodible test soil, two to seven layers of 1 cm in the run
     c.tau_c = 2;
-    Simulation<2> sim(settings(c));
+    Simulation<2> sim(settings<2>(c));
     seed(c, sim);
     double expected = 0, tau_mean = 0;
     long steps = 0;
@@ -209,7 +259,7 @@ TEST(BedShear, NothingErodesBelowTheCriticalStress) {
   c.soil = 0.15;
   c.kd = 3e-3;
   c.tau_c = 1000;
-  Simulation<2> sim(settings(c));
+  Simulation<2> sim(settings<2>(c));
   seed(c, sim);
   while (sim.time() < 0.5) sim.step(std::min(sim.stable_dt().dt, 0.5 - sim.time()));
   EXPECT_GT(sim.bed_shear()->largest_shear(), 5.0);
