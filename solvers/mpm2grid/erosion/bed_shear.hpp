@@ -34,12 +34,14 @@
 // One whose top lies within half its side of its column's bed (the column's top layer) and whose
 // column is wet with tau > tau_c gains e_p += dt kd (tau - tau_c) secant (the bed lowers
 // vertically at the normal rate times the secant); when e_p reaches s_p the particle is detached
-// (e_p = infinity from then on, particles/particles.hpp's is_suspended): it carries no stress (F_E = I), moves with the water (its G2P velocity is the water
-// grid's, a dilute suspension's grains) and sinks through it at the settling velocity w_s. A
-// suspended particle whose bottom reaches its column's bed where tau <= tau_c (or the column is
-// dry) deposits: e_p = 0, a bed particle again, stress-free; where tau > tau_c it rides on the
-// bed (its bottom kept at the bed's surface) until the flow calms. With kd in m^3/(N s), tau and tau_c in Pa, the rate is in m/s, the units and
-// keys of the breach model (solvers/breach/soil/soil.hpp).
+// (e_p = infinity from then on, particles/particles.hpp's is_suspended): it carries no stress
+// (F_E = I), moves with the water (its G2P velocity is the water grid's, a dilute suspension's
+// grains) and sinks through it at the settling velocity w_s. A suspended particle whose bottom
+// reaches its column's bed where tau <= tau_c (or the column is dry) deposits: e_p = 0, a bed
+// particle again, stress-free; where tau > tau_c it rides on the bed (its bottom kept at the
+// bed's surface) until the flow calms. With kd in m^3/(N s), tau and tau_c in Pa, the rate is in
+// m/s, the units and keys of the breach model (solvers/breach/soil/soil.hpp).
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -103,7 +105,6 @@ class BedShear {
   std::size_t column_of(const Vec<Dim>& x) const;
   // The column's centre (its y: 0).
   Vec<Dim> column_centre(std::size_t c) const;
-  const ExcessStressSettings& erosion() const { return erosion_; }
   double largest_shear() const;  // Pa, over the wet columns
 
  private:

@@ -10,8 +10,9 @@ template <int Dim>
 long long count_within(const Particles<Dim>& P, const std::vector<Region>& regions, double margin) {
   long long n = 0;
   for (std::size_t p = 0; p < P.size(); ++p)
-    n += !is_suspended(P.eroded[p]) && std::any_of(regions.begin(), regions.end(),
-                     [&](const Region& r) { return r.template contains<Dim>(P.x[p], margin); });
+    n += !is_suspended(P.eroded[p]) && std::any_of(regions.begin(), regions.end(), [&](const Region& r) {
+      return r.template contains<Dim>(P.x[p], margin);
+    });
   return n;
 }
 

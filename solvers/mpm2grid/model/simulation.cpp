@@ -471,7 +471,8 @@ void Simulation<Dim>::carry_suspended() {
   flip_probe_.C.resize(carried.size());
   grid_to_particles_each<VelocityGradient::none>(flip_probe_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
                                                  [](std::size_t) {});
-  for (std::size_t k = 0; k < carried.size(); ++k) soil_.v[carried[k]] = flip_probe_.v[k], soil_.C[carried[k]] = flip_probe_.C[k];
+  for (std::size_t k = 0; k < carried.size(); ++k)
+    soil_.v[carried[k]] = flip_probe_.v[k], soil_.C[carried[k]] = flip_probe_.C[k];
 }
 
 // A species' home blocks before the move (home_before_), and after it which particles it took to
