@@ -38,11 +38,12 @@ COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "parti
 STEP_PHASES = ["balance", "grid", "halo plan", "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
                "boundary", "halo copy", "g2p water", "g2p soil", "outflow", "inlet", "migrate", "bed shear"]
 CHECKS = ["dt limit", "blow-up check"]
-# The step phases without MPI, and the communication phases (whose time less their wait is their
-# own work): node_scaling.py's and comm_model.py's breakdown.
+# The step phases without MPI, and the phases with messages or reductions (outflow and bed shear
+# reduce over the ranks; their time less their wait is their own work): node_scaling.py's and
+# comm_model.py's breakdown. A phase in both would count its wait twice.
 COMPUTE_PHASES = ["grid", "stresses", "p2g water", "p2g soil", "grid solve", "boundary", "g2p water", "g2p soil",
-                  "inlet", "bed shear"]
-COMM_PHASES = ["halo plan", "halo sum", "halo copy", "outflow", "migrate"]
+                  "inlet"]
+COMM_PHASES = ["halo plan", "halo sum", "halo copy", "outflow", "migrate", "bed shear"]
 
 
 def slug(phase):

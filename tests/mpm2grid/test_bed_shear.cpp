@@ -13,9 +13,10 @@
 //   2b. Cohesive bed: a soil layer under the flow erodes at kd (tau - tau_c): the bed's lowering in
 //       the middle of the channel (its surface, measured from the bed particles, plus the part of
 //       the top layer eroded so far) equals the integral of kd (tau - tau_c) over the closure's
-//       shear at every step within 10% (the issue's bound; layers of a particle's side come off one
-//       at a time), at three slopes (tau from about 8 to 30 Pa); with tau_c above the flow's shear
-//       nothing erodes at all.
+//       shear at every step within 2% (the issue asks 10%; both sides take the same shear, so what
+//       is left is the top-layer rule on a bed that lowers unevenly across columns, measured
+//       0.03-0.3% once at least two layers came off), at three slopes (mean shear 5.7 to 11.4 Pa);
+//       with tau_c above the flow's shear nothing erodes at all.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -156,7 +157,9 @@ void expect_normal_flow(const Channel& c, const Flow& f, const Flow& before, con
   EXPECT_NEAR(f.shear / gravity_pull, 1.0, 0.05);
   EXPECT_NEAR(f.depth / dn, 1.0, 0.05);
   EXPECT_NEAR(f.speed / un, 1.0, 0.05);
-  EXPECT_NEAR(f.speed / before.speed, 1.0, 0.02);  // steady
+  // Steady: over the last half second the speed changed by less than a tenth of what gravity's pull
+  // along the bed alone would add (g S 0.5 s; measured under 4% of it).
+  EXPECT_LT(std::abs(f.speed - before.speed), 0.1 * kG * c.slope * 0.5);
 }
 
 TEST(BedShear, UniformFlowDownARoughInclineBalancesGravity) {
@@ -250,7 +253,7 @@ TEST(BedShear, CohesiveBedErodesAtTheExcessStressRate) {
     std::printf("S = %g: mean shear %.2f Pa, lowering %.5f m, kd (tau - tau_c) integrated %.5f m\n", slope,
                 tau_mean / static_cast<double>(steps), measured, expected);
     EXPECT_GT(expected, c.h);  // at least two layers came off
-    EXPECT_NEAR(measured / expected, 1.0, 0.10);
+    EXPECT_NEAR(measured / expected, 1.0, 0.02);
   }
 }
 

@@ -403,13 +403,17 @@ void Simulation<Dim>::blend_flip(Particles<Dim>& P, const NodeFields<Dim>& nodes
   for (std::size_t i = 0; i < grid_.nodes(); ++i)
     before.velocity[i] =
         nodes.mass[i] > 0 ? Vec<Dim>(nodes.velocity[i] - before.velocity[i]) : Vec<Dim>(Vec<Dim>::Zero());
-  flip_probe_.x = P.x;
-  flip_probe_.v.resize(P.size());
-  flip_probe_.C.resize(P.size());
-  grid_to_particles_each<VelocityGradient::none>(flip_probe_, grid_, before, nullptr, nullptr, &walls,
-                                                 [](std::size_t) {});
-  for (std::size_t p = 0; p < P.size(); ++p)
-    P.v[p] = share * (v_before_[p] + flip_probe_.v[p]) + (1 - share) * P.v[p];
+  probe_.x = P.x;
+  sample(before, walls);
+  for (std::size_t p = 0; p < P.size(); ++p) P.v[p] = share * (v_before_[p] + probe_.v[p]) + (1 - share) * P.v[p];
+}
+
+// probe_.v and probe_.C: the velocity and APIC matrix of `nodes` at the points probe_.x.
+template <int Dim>
+void Simulation<Dim>::sample(const NodeFields<Dim>& nodes, const WallFold<Dim>& walls) {
+  probe_.v.resize(probe_.x.size());
+  probe_.C.resize(probe_.x.size());
+  grid_to_particles_each<VelocityGradient::none>(probe_, grid_, nodes, nullptr, nullptr, &walls, [](std::size_t) {});
 }
 
 // The water grid's masses for the saturation (docs/methods/mpm2grid.md, "Continuum model"), each
@@ -463,16 +467,12 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
 template <int Dim>
 void Simulation<Dim>::carry_suspended() {
   std::vector<std::size_t> carried;
-  flip_probe_.x.clear();
+  probe_.x.clear();
   for (std::size_t p = 0; p < soil_.size(); ++p)
-    if (bed_shear_->suspended(soil_, p)) carried.push_back(p), flip_probe_.x.push_back(soil_.x[p]);
+    if (bed_shear_->suspended(soil_, p)) carried.push_back(p), probe_.x.push_back(soil_.x[p]);
   if (carried.empty()) return;
-  flip_probe_.v.resize(carried.size());
-  flip_probe_.C.resize(carried.size());
-  grid_to_particles_each<VelocityGradient::none>(flip_probe_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
-                                                 [](std::size_t) {});
-  for (std::size_t k = 0; k < carried.size(); ++k)
-    soil_.v[carried[k]] = flip_probe_.v[k], soil_.C[carried[k]] = flip_probe_.C[k];
+  sample(water_nodes_, water_fold_);
+  for (std::size_t k = 0; k < carried.size(); ++k) soil_.v[carried[k]] = probe_.v[k], soil_.C[carried[k]] = probe_.C[k];
 }
 
 // A species' home blocks before the move (home_before_), and after it which particles it took to

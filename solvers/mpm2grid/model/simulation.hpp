@@ -213,6 +213,7 @@ class Simulation {
   void wall_water_fill();
   void soil_velocities();
   void carry_suspended();
+  void sample(const NodeFields<Dim>& nodes, const WallFold<Dim>& walls);
   void record_homes(const Particles<Dim>& P);
   void mark_moved(const Particles<Dim>& P, std::vector<char>& left) const;
   // Times the rest of the enclosing scope as `phase` (waits counted over several ranks).
@@ -227,11 +228,12 @@ class Simulation {
   WallFold<Dim> water_fold_;  // and in the water's
   NodeFields<Dim> water_nodes_, soil_nodes_;
   // With a FLIP share: each species' node velocities from its particles before the step's forces
-  // (mass and momentum spread alone), the particles' velocities before the step, and a probe at
-  // the particles' positions that samples the grid's change of velocity.
+  // (mass and momentum spread alone) and the particles' velocities before the step. probe_:
+  // points at which sample() reads a grid field's velocity (the FLIP share's change of velocity,
+  // the detached soil's water velocity).
   NodeFields<Dim> water_before_, soil_before_;
   std::vector<Vec<Dim>> v_before_;
-  Particles<Dim> flip_probe_;
+  Particles<Dim> probe_;
   std::vector<Mat<Dim>> soil_tau_, grad_v_;  // the soil's Kirchhoff stresses and velocity gradients
   std::vector<double> divergence_;           // the water's div v
   std::vector<double> water_fill_;           // m_w,i / I_i per node slot, for the saturation
