@@ -4,6 +4,9 @@
 #include <mpi.h>
 
 #include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -38,6 +41,18 @@ bool launched() {
     if (std::getenv(name)) return true;
   return false;
 }
+
+// A new empty folder for one singleton's Open MPI session files ("" if none can be made, and the
+// singleton then starts Open MPI's daemon as before): isolated singletons running at once on one
+// machine would otherwise share one session folder and its MPI-IO shared-file-pointer files.
+std::string private_session_dir() {
+  std::error_code ec;
+  std::filesystem::path base = std::filesystem::temp_directory_path(ec);
+  if (ec) return "";
+  std::string pattern = (base / "suite-mpi.XXXXXX").string();
+  if (!mkdtemp(pattern.data())) return "";
+  return pattern;
+}
 }  // namespace
 
 Environment::Environment(int& argc, char**& argv, ThreadLevel required) {
@@ -49,12 +64,22 @@ Environment::Environment(int& argc, char**& argv, ThreadLevel required) {
   } else {
     // Set for this process's MPI_Init only, then taken out again, so that programs it starts
     // (a study's evaluations, foam-erosion's mpirun) see the environment it was given.
-    std::vector<const char*> set;
-    if (!launched())
-      for (const auto& [name, value] : {std::pair{"OMPI_MCA_pml", "ob1"}})
-        if (!std::getenv(name)) setenv(name, value, 1), set.push_back(name);
+    std::vector<std::pair<std::string, std::string>> settings;
+    if (!launched()) {
+      settings.emplace_back("OMPI_MCA_pml", "ob1");
+      if (!std::getenv("OMPI_MCA_ess_singleton_isolated") && !std::getenv("OMPI_MCA_orte_tmpdir_base")) {
+        session_dir_ = private_session_dir();
+        if (!session_dir_.empty()) {
+          settings.emplace_back("OMPI_MCA_ess_singleton_isolated", "1");
+          settings.emplace_back("OMPI_MCA_orte_tmpdir_base", session_dir_);
+        }
+      }
+    }
+    std::vector<std::string> set;
+    for (const auto& [name, value] : settings)
+      if (!std::getenv(name.c_str())) setenv(name.c_str(), value.c_str(), 1), set.push_back(name);
     SUITE_MPI_CHECK(MPI_Init_thread(&argc, &argv, to_mpi(required), &provided));
-    for (const char* name : set) unsetenv(name);
+    for (const auto& name : set) unsetenv(name.c_str());
     owns_ = true;
   }
   provided_ = from_mpi(provided);
@@ -68,6 +93,10 @@ Environment::~Environment() {
   int finalised = 0;
   MPI_Finalized(&finalised);
   if (!finalised) MPI_Finalize();
+  if (!session_dir_.empty()) {
+    std::error_code ignored;  // a folder left behind in the temporary folder is harmless
+    std::filesystem::remove_all(session_dir_, ignored);
+  }
 }
 
 }  // namespace suite::mpi
