@@ -19,6 +19,7 @@ if(SUITE_WITH_MPM2GRID OR SUITE_WITH_CARVING OR SUITE_WITH_FOAM_EROSION_FEM OR S
 endif()
 if(SUITE_WITH_CARVING)
   find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d)
+  find_package(PNG REQUIRED)  # libpng: seed images read and written without imgcodecs (carving/image/png_codec.hpp)
 endif()
 if(SUITE_WITH_RICE)
   # ml: the random forest and SVM of the ASV classifiers; dnn: a user's ONNX network (libopencv-ml-dev and

@@ -4,7 +4,6 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "carving/batch/manifest.hpp"
 #include "carving/calibration/ball.hpp"

@@ -1,30 +1,55 @@
 #include "carving/image/image_io.hpp"
 
+#include <dlfcn.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
-#include <opencv2/imgcodecs.hpp>
+#include <array>
 #include <string>
+#include <vector>
 
+#include "carving/image/imgcodecs_plugin.hpp"
+#include "carving/image/png_codec.hpp"
 #include "core/errors.hpp"
+#include "core/run/executable_path.hpp"
 
 namespace suite::carving {
+namespace {
+
+// The plugin's reader, from the build's or installation's lib folder beside the executable's
+// bin folder, or the executable's own folder. dlopen hands back the same handle on every call
+// after the first (the plugin stays loaded for the process's life).
+ImreadFunction imgcodecs_reader(const std::filesystem::path& image) {
+  const std::filesystem::path bin = executable_dir();
+  std::vector<std::string> tried;
+  for (const auto& candidate : {bin.parent_path() / "lib" / kImgcodecsPlugin, bin / kImgcodecsPlugin}) {
+    if (void* handle = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+      if (auto* read = reinterpret_cast<ImreadFunction>(dlsym(handle, "suite_carving_imread"))) return read;
+    }
+    const char* why = dlerror();
+    tried.push_back(fmt::format("'{}'{}{}", candidate.string(), why ? ": " : "", why ? why : ""));
+  }
+  throw InputError(
+      fmt::format("cannot read image '{}': it is not a PNG, and the reader of other formats could not be loaded ({}); "
+                  "keep the lib folder beside the bin folder as built or installed, or convert the images to PNG",
+                  image.string(), fmt::join(tried, "; ")));
+}
+
+}  // namespace
 
 cv::Mat read_image(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(fmt::format("cannot read image '{}': no such file", path.string()));
+  if (has_png_signature(path)) return read_png_bgr(path);
   cv::Mat image;
-  std::string detail;
-  try {
-    image = cv::imread(path.string(), cv::IMREAD_COLOR);
-  } catch (const cv::Exception& e) {
-    detail = e.err;
-  }
-  if (image.empty())
+  std::array<char, 512> detail{};
+  const int failed = imgcodecs_reader(path)(path.c_str(), &image, detail.data(), detail.size());
+  if (failed || image.empty())
     throw InputError(
         fmt::format("cannot read image '{}': empty, corrupt or not a format OpenCV decodes (PNG, JPEG, "
                     "TIFF, BMP){}{}",
-                    path.string(), detail.empty() ? "" : "; OpenCV: ", detail));
+                    path.string(), detail[0] ? "; OpenCV: " : "", detail.data()));
   return image;
 }
 
@@ -38,19 +63,7 @@ cv::Mat mask_image(const Mask& mask) {
 }
 
 void write_png(const std::filesystem::path& path, const cv::Mat& image) {
-  if (image.empty()) throw InputError(fmt::format("cannot write '{}': the image is empty", path.string()));
-  bool ok = false;
-  std::string detail;
-  try {
-    ok = cv::imwrite(path.string(), image);
-  } catch (const cv::Exception& e) {
-    detail = e.err;
-  }
-  if (!ok)
-    throw InputError(
-        fmt::format("cannot write image '{}': check that the folder exists and is writable and that the "
-                    "extension is one OpenCV writes (.png){}{}",
-                    path.string(), detail.empty() ? "" : "; OpenCV: ", detail));
+  write_png_file(path, image);
 }
 
 void write_mask_png(const std::filesystem::path& path, const Mask& mask) {

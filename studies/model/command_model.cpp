@@ -12,6 +12,7 @@
 #include "core/dakota/results_file.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/run/executable_path.hpp"
 #include "studies/model/process.hpp"
 
 namespace suite::studies {
@@ -24,12 +25,6 @@ std::string read_text(const std::filesystem::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-// The folder of the running executable, for `{bindir}`.
-std::string bindir() {
-  std::error_code ec;
-  return std::filesystem::read_symlink("/proc/self/exe", ec).parent_path().string();
 }
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
@@ -50,7 +45,7 @@ std::unique_ptr<Model> CommandModel::read(const config::Section& s, const std::v
   std::vector<std::string> given = st.command;
   if (st.command.empty())
     s.reject("command", "name the program and its arguments, e.g. [./driver.sh, params.in, results.out]");
-  for (auto& a : st.command) a = replace_all(a, "{bindir}", bindir());
+  for (auto& a : st.command) a = replace_all(a, "{bindir}", executable_dir().string());
   // A program named by a relative path is the study folder's, not the work directory's.
   if (st.command[0].find('/') != std::string::npos && std::filesystem::path(st.command[0]).is_relative())
     given[0] = st.command[0] = std::filesystem::absolute(s.base_dir() / st.command[0]).lexically_normal().string();

@@ -21,17 +21,7 @@
 namespace suite::carving {
 namespace {
 
-// A fresh folder for this test's files: <SUITE_TEST_TMP or the system temp>/suite-tests/<suite>.<test>.
-std::filesystem::path scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const char* base = std::getenv("SUITE_TEST_TMP");
-  const std::filesystem::path root =
-      base ? std::filesystem::path(base) : std::filesystem::temp_directory_path() / "suite-tests";
-  const auto dir = root / (std::string(info->test_suite_name()) + "." + info->name());
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+using testing::scratch_dir;
 
 // A parallel view of `scale` px/mm looking along +z: world x -> u, world y -> v.
 View parallel_view(double scale, int width = 640, int height = 480) {

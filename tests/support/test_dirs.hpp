@@ -29,6 +29,19 @@ inline std::filesystem::path scratch_dir(const mpi::Comm& comm) {
   return dir;
 }
 
+// <SUITE_TEST_TMP or the system temp>/suite-tests/<test suite>.<test name>/, emptied first; for
+// tests that run in one process.
+inline std::filesystem::path scratch_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const char* base = std::getenv("SUITE_TEST_TMP");
+  const std::filesystem::path root =
+      base ? std::filesystem::path(base) : std::filesystem::temp_directory_path() / "suite-tests";
+  const auto dir = root / (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 // The whole text of a file ("" if it cannot be read).
 inline std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path);
