@@ -30,6 +30,7 @@
 #include "core/mpi/collective_try.hpp"
 #include "core/mpi/comm.hpp"
 #include "core/mpi/environment.hpp"
+#include "core/run/allocator.hpp"
 #include "core/run/guarded_main.hpp"
 #include "core/run/run_record.hpp"
 #include "core/run/shard.hpp"
@@ -221,6 +222,7 @@ int carve_file(const Arguments& a, suite::Logger& log) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  suite::keep_freed_memory_for_reuse();
   suite::mpi::Environment env(argc, argv);
   const suite::mpi::Comm world(MPI_COMM_WORLD);
   return suite::guarded_main(world, [&] {

@@ -24,6 +24,12 @@ class Mask {
   const std::vector<std::uint8_t>& pixels() const { return pixels_; }  // 0 or 1
   long long area() const { return count(0, 0, width_ - 1, height_ - 1); }
 
+  // The inclusive box of the seed pixels: none lie outside it (empty when x1 < x0).
+  struct Box {
+    int x0, y0, x1, y1;
+  };
+  Box seed_box() const { return {box_x0_, box_y0_, box_x1_, box_y1_}; }
+
   // Seed pixels in the inclusive rectangle [x0, x1] x [y0, y1], which must lie in the image.
   long long count(int x0, int y0, int x1, int y1) const {
     x0 = std::max(x0, box_x0_) - box_x0_, y0 = std::max(y0, box_y0_) - box_y0_;

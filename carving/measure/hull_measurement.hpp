@@ -7,7 +7,9 @@
 //   3. length, width and thickness are the seed's extents along the principal axes of the kept
 //      volume (longest first);
 //   4. optionally a marching-cubes surface of the occupancy fractions at `mesh_resolution` gives
-//      the surface area and a PLY mesh.
+//      the surface area and a PLY mesh. The fractions are those of 2^3 samples per mesh voxel;
+//      when `resolution` is twice `mesh_resolution` (the defaults), step 2's grid is the mesh
+//      grid halved and its voxel centres are those samples, so no further carve is made.
 #include <optional>
 
 #include "carving/camera/camera.hpp"

@@ -34,6 +34,12 @@ constexpr double kFragmentShare = 0.1;
 // consistent and inconsistent view sets reach is measured in docs/carving.md, "Quality checks".
 constexpr double kMinCoverage = 0.95;
 
+// Wall time of a seed's phases, s (seed.json "times_s"; the batch benchmark's breakdown): measure
+// is the carve with its quality checks and mesh, or the slices.
+struct SeedTimes {
+  double read = 0, segment = 0, measure = 0, outputs = 0;
+};
+
 struct SegmentedView {
   std::filesystem::path file;
   cv::Mat image;
@@ -44,19 +50,23 @@ struct SegmentedView {
 // Every image read and segmented; the first image that cannot be read, has another size than
 // the first, or shows no plausible seed fails the seed, naming the file.
 std::vector<SegmentedView> segment_views(const std::vector<std::filesystem::path>& files,
-                                         const SegmentationOptions& options) {
+                                         const SegmentationOptions& options, SeedTimes& times) {
   // Reserved: a view's masks would otherwise be copied at every growth (cv::Mat's move is not
   // noexcept, so the vector copies its elements), a fifth of a seed's time.
   std::vector<SegmentedView> views;
   views.reserve(files.size());
   for (std::size_t i = 0; i < files.size(); ++i) {
+    auto t = std::chrono::steady_clock::now();
     SegmentedView v{files[i], read_image(files[i]), {}, ""};
+    times.read += seconds_since(t);
     if (!views.empty() && v.image.size() != views[0].image.size())
       throw InputError(fmt::format(
           "image '{}' is {} x {} px but '{}' is {} x {} px; all views of a seed must have "
           "one size",
           files[i].string(), v.image.cols, v.image.rows, files[0].string(), views[0].image.cols, views[0].image.rows));
+    t = std::chrono::steady_clock::now();
     v.segmentation = segment(v.image, options);
+    times.segment += seconds_since(t);
     if (!v.segmentation.found)
       throw InputError(fmt::format("view {} ('{}'): {}", i + 1, files[i].filename().string(), v.segmentation.reason));
     const cv::Rect& b = v.segmentation.bounding_box;
@@ -72,7 +82,8 @@ std::vector<SegmentedView> segment_views(const std::vector<std::filesystem::path
 
 // The views side by side, contours in green (and `lines` per view in red), at most `columns`
 // across, each cropped to the seed (the union of the contours' boxes and a margin) and scaled to
-// `tile_width` px: small enough to keep one per seed in a batch of thousands.
+// at most `tile_width` px (reduced by a whole factor, each tile pixel the mean of a block of view
+// pixels; or enlarged to `tile_width`): small enough to keep one per seed in a batch of thousands.
 cv::Mat overlay_montage(const std::vector<SegmentedView>& views,
                         const std::vector<std::vector<OverlayLine>>& lines = {}, int columns = 6,
                         int tile_width = 200) {
@@ -82,27 +93,44 @@ cv::Mat overlay_montage(const std::vector<SegmentedView>& views,
   const int margin = std::max(4, std::max(crop.width, crop.height) / 8);
   crop = cv::Rect(crop.x - margin, crop.y - margin, crop.width + 2 * margin, crop.height + 2 * margin) &
          cv::Rect(0, 0, views[0].image.cols, views[0].image.rows);
+  // A whole reduction factor keeps cv::resize's block-mean path, a fifth of the cost of its
+  // general area interpolation; the crop loses under `factor` px of margin to it.
+  const int factor = std::max(1, (crop.width + tile_width - 1) / tile_width);
+  if (factor > 1) {
+    crop.width -= crop.width % factor, crop.height -= crop.height % factor;
+    tile_width = crop.width / factor;
+  }
   const int cols = std::min(columns, n), rows = (n + cols - 1) / cols;
   const double scale = static_cast<double>(tile_width) / crop.width;
-  const int tile_height = std::max(1, static_cast<int>(std::round(crop.height * scale)));
+  const int tile_height =
+      factor > 1 ? crop.height / factor : std::max(1, static_cast<int>(std::round(crop.height * scale)));
   cv::Mat montage(rows * tile_height, cols * tile_width, CV_8UC3, cv::Scalar(0, 0, 0));
+  // A frame pixel's position on its tile, in 1/16 px (pixel centres at integers on both).
+  constexpr int kShift = 4;
+  const auto on_tile = [&](const cv::Point2d& p) {
+    return cv::Point(cvRound(((p.x - crop.x + 0.5) * scale - 0.5) * (1 << kShift)),
+                     cvRound(((p.y - crop.y + 0.5) * scale - 0.5) * (1 << kShift)));
+  };
   for (int i = 0; i < n; ++i) {
-    cv::Mat drawn = views[i].image.clone();
-    if (drawn.channels() == 1) cv::cvtColor(drawn, drawn, cv::COLOR_GRAY2BGR);
-    cv::drawContours(drawn, std::vector<std::vector<cv::Point>>{views[i].segmentation.contour}, 0,
-                     cv::Scalar(0, 255, 0), 1);
+    // Each crop is scaled straight into its tile, and the contour drawn on the tile at the tile's
+    // resolution (copying and drawing on the crops first was a tenth of a seed's time).
+    cv::Mat tile = montage(cv::Rect((i % cols) * tile_width, (i / cols) * tile_height, tile_width, tile_height));
+    cv::Mat view = views[i].image(crop);
+    if (view.channels() == 1) cv::cvtColor(view, view, cv::COLOR_GRAY2BGR);
+    cv::resize(view, tile, tile.size(), 0, 0, factor > 1 ? cv::INTER_AREA : cv::INTER_NEAREST);
+    std::vector<cv::Point> contour;
+    contour.reserve(views[i].segmentation.contour.size());
+    for (const cv::Point& p : views[i].segmentation.contour) contour.push_back(on_tile(p));
+    cv::polylines(tile, contour, true, cv::Scalar(0, 255, 0), 1, cv::LINE_8, kShift);
     if (i < static_cast<int>(lines.size()))
-      for (const auto& l : lines[i]) cv::line(drawn, l.from, l.to, cv::Scalar(0, 0, 255), 1);
-    cv::Mat tile;
-    cv::resize(drawn(crop), tile, cv::Size(tile_width, tile_height), 0, 0,
-               scale < 1 ? cv::INTER_AREA : cv::INTER_NEAREST);
-    tile.copyTo(montage(cv::Rect((i % cols) * tile_width, (i / cols) * tile_height, tile_width, tile_height)));
+      for (const auto& l : lines[i])
+        cv::line(tile, on_tile(l.from), on_tile(l.to), cv::Scalar(0, 0, 255), 1, cv::LINE_8, kShift);
   }
   return montage;
 }
 
 void measure_by_carving(const std::vector<SegmentedView>& segmented, const SeedProfile& profile,
-                        const std::filesystem::path& dir, SeedRow& row, nlohmann::json& record) {
+                        const std::filesystem::path& dir, SeedRow& row, nlohmann::json& record, SeedTimes& times) {
   if (profile.camera.views && static_cast<int>(segmented.size()) != *profile.camera.views)
     throw InputError(
         fmt::format("{} images, but the profile's rig takes {} views (camera.views): a view is "
@@ -125,6 +153,7 @@ void measure_by_carving(const std::vector<SegmentedView>& segmented, const SeedP
                               {"other_turn_search_volume_mm3", reg->other_sense_volume_mm3}};
   const HullMeasurement hull = measure_hull(views, masks, profile.hull);
   const double carve_s = seconds_since(start);
+  times.measure = carve_s;
   record["silhouette_coverage"] = hull.coverage;
   record["silhouette_check_s"] = hull.coverage_s;
   const auto worst =
@@ -138,9 +167,11 @@ void measure_by_carving(const std::vector<SegmentedView>& segmented, const SeedP
   row.length_mm = hull.length_mm, row.width_mm = hull.width_mm, row.thickness_mm = hull.thickness_mm;
   row.volume_mm3 = hull.volume_mm3;
   row.surface_mm2 = hull.surface_mm2;
+  const auto outputs = std::chrono::steady_clock::now();
   write_png(dir / "overlays.png", overlay_montage(segmented));
   if (profile.hull.mesh) write_ply(dir / "surface.ply", hull.mesh);
   if (profile.hull.keep_occupancy) write_occupancy_h5(dir / "voxels.h5", hull.occupancy);
+  times.outputs = seconds_since(outputs);
   record["carving"] = {{"voxels", hull.voxels},
                        {"voxel_mm", hull.grid.voxel.x()},
                        {"grid", hull.grid.n},
@@ -153,14 +184,16 @@ void measure_by_carving(const std::vector<SegmentedView>& segmented, const SeedP
 }
 
 void measure_by_slicing(const std::vector<SegmentedView>& segmented, const SeedProfile& profile,
-                        const std::filesystem::path& dir, SeedRow& row, nlohmann::json& record) {
+                        const std::filesystem::path& dir, SeedRow& row, nlohmann::json& record, SeedTimes& times) {
   if (segmented.size() != 2)
     throw InputError(
         fmt::format("the slicing method needs two images, the top view then the side view; this seed "
                     "has {}",
                     segmented.size()));
+  const auto start = std::chrono::steady_clock::now();
   const TwoViewResult r =
       measure_two_view(segmented[0].segmentation.mask, segmented[1].segmentation.mask, profile.slicing);
+  times.measure = seconds_since(start);
   row.length_mm = r.length_mm, row.width_mm = r.width_mm, row.thickness_mm = r.thickness_mm;
   row.volume_mm3 = r.volume_mm3;
   row.surface_mm2 = std::nan("");
@@ -169,7 +202,9 @@ void measure_by_slicing(const std::vector<SegmentedView>& segmented, const SeedP
     lines[0].push_back({{s.top_x_px, r.top_box.y0 - 0.5}, {s.top_x_px, r.top_box.y1 + 0.5}});
     lines[1].push_back({{s.side_x_px, r.side_box.y0 - 0.5}, {s.side_x_px, r.side_box.y1 + 0.5}});
   }
+  const auto outputs = std::chrono::steady_clock::now();
   write_png(dir / "overlays.png", overlay_montage(segmented, lines, 2, 640));
+  times.outputs = seconds_since(outputs);
   record["slicing"] = {{"slices", r.slices.size()},
                        {"scale_correction", r.scale},
                        {"neighbour_average", profile.slicing.neighbour_average},
@@ -194,7 +229,8 @@ SeedRow measure_seed(const SeedEntry& seed, const SeedProfile& profile, const st
     std::filesystem::create_directories(dir);
     const auto files = seed_image_files(seed);
     row.n_views = static_cast<int>(files.size());
-    const auto segmented = segment_views(files, profile.segmentation);
+    SeedTimes times;
+    const auto segmented = segment_views(files, profile.segmentation, times);
     nlohmann::json record = {{"id", seed.id}, {"method", row.method}, {"profile", profile.source}};
     for (const auto& v : segmented) record["images"].push_back(v.file.string());
     // A silhouette on the image's edge may be cut off by the frame. On the left, right or top edge
@@ -223,9 +259,9 @@ SeedRow measure_seed(const SeedEntry& seed, const SeedProfile& profile, const st
     if (record.contains("fragments")) flags.emplace_back("fragmented");
     row.quality = fmt::format("{}", fmt::join(flags, ";"));
     if (row.method == "carving") {
-      measure_by_carving(segmented, profile, dir, row, record);
+      measure_by_carving(segmented, profile, dir, row, record, times);
     } else {
-      measure_by_slicing(segmented, profile, dir, row, record);
+      measure_by_slicing(segmented, profile, dir, row, record, times);
     }
     if (seed.weight_mg) row.density_mg_mm3 = density_mg_per_mm3(*seed.weight_mg, row.volume_mm3);
     record["length_mm"] = row.length_mm;
@@ -234,6 +270,11 @@ SeedRow measure_seed(const SeedEntry& seed, const SeedProfile& profile, const st
     record["volume_mm3"] = row.volume_mm3;
     if (std::isfinite(row.surface_mm2)) record["surface_mm2"] = row.surface_mm2;
     if (seed.weight_mg) record["weight_mg"] = *seed.weight_mg, record["density_mg_mm3"] = row.density_mg_mm3;
+    record["times_s"] = {{"read_images", times.read},
+                         {"segment", times.segment},
+                         {"measure", times.measure},
+                         {"write_outputs", times.outputs},
+                         {"total", seconds_since(start)}};
     write_json_atomic(dir / "seed.json", record);
     row.ok = true;
   } catch (const std::exception& e) {  // a bad seed fails its row, never the batch

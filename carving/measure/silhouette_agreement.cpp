@@ -29,23 +29,32 @@ std::vector<double> silhouette_coverage(const std::vector<View>& views, const st
   const double radius_mm = 0.5 * g.voxel.norm();  // the voxel's bounding sphere
   std::vector<double> coverage;
   for (std::size_t v = 0; v < views.size(); ++v) {
+    // Painted and counted over the seed pixels' box only (no seed pixel lies outside it; circles
+    // reaching beyond it are clipped by OpenCV).
     const Mask& mask = masks[v];
-    cv::Mat painted(mask.height(), mask.width(), CV_8U, cv::Scalar(0));
+    const Mask::Box box = mask.seed_box();
+    if (box.x1 < box.x0) {
+      coverage.push_back(0.0);
+      continue;
+    }
+    cv::Mat painted(box.y1 - box.y0 + 1, box.x1 - box.x0 + 1, CV_8U, cv::Scalar(0));
     for (const auto& c : centres) {
       const Eigen::Vector2d p = project(views[v].P, c);
       // The sphere's image radius from the projection of a point one radius away across the view.
       const Eigen::Vector2d q = project(views[v].P, c + Eigen::Vector3d(0, radius_mm, 0));
       const int r = std::max(1, static_cast<int>(std::ceil((q - p).norm())));
-      cv::circle(painted, cv::Point(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y()))), r,
-                 cv::Scalar(1), cv::FILLED);
+      cv::circle(
+          painted,
+          cv::Point(static_cast<int>(std::lround(p.x())) - box.x0, static_cast<int>(std::lround(p.y())) - box.y0), r,
+          cv::Scalar(1), cv::FILLED);
     }
     long long seed = 0, covered = 0;
-    for (int y = 0; y < mask.height(); ++y) {
-      const auto* row = painted.ptr<std::uint8_t>(y);
-      for (int x = 0; x < mask.width(); ++x)
-        if (mask.at(x, y)) ++seed, covered += row[x] != 0;
+    for (int y = box.y0; y <= box.y1; ++y) {
+      const auto* row = painted.ptr<std::uint8_t>(y - box.y0);
+      for (int x = box.x0; x <= box.x1; ++x)
+        if (mask.at(x, y)) ++seed, covered += row[x - box.x0] != 0;
     }
-    coverage.push_back(seed > 0 ? static_cast<double>(covered) / static_cast<double>(seed) : 0.0);
+    coverage.push_back(static_cast<double>(covered) / static_cast<double>(seed));
   }
   return coverage;
 }
