@@ -2,7 +2,7 @@
 # Runs the carving benchmarks of issue 4 and charts them into benchmarks/results/carving/:
 #   carving_speed           per-seed carve times, plain loop baseline, measure_hull, two-view slicing
 #   carving_speed_accuracy  volume error against carve time over resolution and views, crease table
-#   run_carving_batch.sh    seedcarve batch throughput on 1, 2 and 3 MPI ranks
+#   run_carving_batch.sh    seedcarve batch throughput by image format on 1, 2 and 3 MPI ranks
 #   run_two_view_slices.sh  two-view volume error against the slice count (and neighbour averaging)
 #
 #   benchmarks/carving/run_carving_benchmarks.sh [BUILD_DIR]   (default build/release)
@@ -10,7 +10,7 @@
 # Needs the targets carving_speed, carving_speed_accuracy and seedcarve built in BUILD_DIR, e.g.
 #   cmake --build build/release --target carving_speed carving_speed_accuracy two_view_slices seedcarve
 # The single-core benchmarks are pinned to one core with taskset when it is available. About
-# 6-8 minutes on a 2-core machine.
+# 12-15 minutes on a 2-core machine.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$root/build/release}
