@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 #include <mpi.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -42,6 +46,26 @@ bool launched() {
   return false;
 }
 
+constexpr const char* kSessionPrefix = "suite-mpi.";
+
+// Removes the session folders (suite-mpi.PID.XXXXXX) that killed singletons left in `base`: those
+// whose process no longer exists. A folder whose PID a live process has taken again stays.
+void remove_stale_session_dirs(const std::filesystem::path& base) {
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(base, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(kSessionPrefix, 0) != 0) continue;
+    const std::string rest = name.substr(std::string(kSessionPrefix).size());
+    const auto dot = rest.find('.');
+    if (dot == std::string::npos || dot == 0 || rest.find_first_not_of("0123456789") != dot) continue;
+    struct stat info {};
+    if (::stat(entry.path().c_str(), &info) != 0 || info.st_uid != ::getuid()) continue;
+    if (::kill(static_cast<pid_t>(std::stol(rest.substr(0, dot))), 0) == 0 || errno != ESRCH) continue;
+    std::error_code ignored;
+    std::filesystem::remove_all(entry.path(), ignored);
+  }
+}
+
 // A new empty folder for one singleton's Open MPI session files ("" if none can be made, and the
 // singleton then starts Open MPI's daemon as before): isolated singletons running at once on one
 // machine would otherwise share one session folder and its MPI-IO shared-file-pointer files.
@@ -49,7 +73,8 @@ std::string private_session_dir() {
   std::error_code ec;
   std::filesystem::path base = std::filesystem::temp_directory_path(ec);
   if (ec) return "";
-  std::string pattern = (base / "suite-mpi.XXXXXX").string();
+  remove_stale_session_dirs(base);
+  std::string pattern = (base / (kSessionPrefix + std::to_string(::getpid()) + ".XXXXXX")).string();
   if (!mkdtemp(pattern.data())) return "";
   return pattern;
 }

@@ -19,8 +19,9 @@ class Environment {
   // environment again after it, so that child processes get the environment this one was
   // given). Such a singleton also starts isolated (OMPI_MCA_ess_singleton_isolated: no Open MPI
   // daemon is forked, so no MPI_Comm_spawn) with its session files in a folder of its own under
-  // the temporary folder (OMPI_MCA_orte_tmpdir_base), removed after MPI_Finalize (a killed
-  // process leaves its few-kB folder behind); unless the environment sets either variable.
+  // the temporary folder (OMPI_MCA_orte_tmpdir_base, suite-mpi.PID.XXXXXX), removed after
+  // MPI_Finalize, or by the next singleton once process PID is gone (a killed one); unless the
+  // environment sets either variable.
   // Launched runs are left to the launcher and the site's settings. A bare MPI_Init: 0.23 s with
   // the daemon, 0.05 s isolated (2-core VM).
   Environment(int& argc, char**& argv, ThreadLevel required = ThreadLevel::funneled);
