@@ -17,6 +17,7 @@ BedShear<Dim>::BedShear(const Walls<Dim>& walls, double h, double water_density,
                         BedShearSettings shear, ExcessStressSettings erosion, const Vec<Dim>& gravity)
     : lo_(walls.lo),
       h_(h),
+      inv_h_(1 / h),
       rho_w_(water_density),
       rho_s_(soil_density),
       floor_(walls.kind[1][0] != WallKind::open),
@@ -37,7 +38,7 @@ std::size_t BedShear<Dim>::column_of(const Vec<Dim>& x) const {
   std::size_t c = 0, stride = 1;
   for (int d = 0; d < Dim; ++d) {
     if (d == 1) continue;
-    const long i = std::clamp(static_cast<long>(std::floor((x[d] - lo_[d]) / h_)), 0L, count_[d] - 1);
+    const long i = std::clamp(static_cast<long>(std::floor((x[d] - lo_[d]) * inv_h_)), 0L, count_[d] - 1);
     c += static_cast<std::size_t>(i) * stride;
     stride *= static_cast<std::size_t>(count_[d]);
   }
@@ -65,13 +66,15 @@ double BedShear<Dim>::side(const Particles<Dim>& soil, std::size_t p) const {
 template <int Dim>
 void BedShear<Dim>::measure(const Particles<Dim>& water, const Particles<Dim>& soil, const mpi::Comm* comm) {
   const std::size_t n = columns_.size();
-  // The beds: the highest top of each column's bed soil.
+  // The beds: the highest top of each column's bed soil. Each soil particle's column is kept for
+  // erode(), which sees the particles where and in the order they are now.
   std::vector<double> top(n, kNoBed);
+  soil_column_.resize(soil.size());
   for (std::size_t p = 0; p < soil.size(); ++p) {
+    const std::size_t c = column_of(soil.x[p]);
+    soil_column_[p] = static_cast<std::uint32_t>(c);
     if (suspended(soil, p)) continue;
-    const double s = side(soil, p);
-    double& t = top[column_of(soil.x[p])];
-    t = std::max(t, soil.x[p][1] + 0.5 * s);
+    top[c] = std::max(top[c], soil.x[p][1] + 0.5 * side(soil, p));
   }
   if (comm && comm->size() > 1) comm->all_reduce(top, mpi::Comm::Reduction::max);
   for (std::size_t c = 0; c < n; ++c) {
@@ -144,7 +147,7 @@ template <int Dim>
 void BedShear<Dim>::erode(Particles<Dim>& soil, double dt) const {
   if (!erosion_.on) return;
   for (std::size_t p = 0; p < soil.size(); ++p) {
-    const auto& col = columns_[column_of(soil.x[p])];
+    const auto& col = columns_[soil_column_[p]];
     if (!col.has_bed) continue;
     const double s = side(soil, p);
     const bool calm = !(col.depth > 0) || col.shear <= erosion_.tau_c;

@@ -43,6 +43,7 @@
 // m/s, the units and keys of the breach model (solvers/breach/soil/soil.hpp).
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/mpi/comm.hpp"
@@ -89,7 +90,7 @@ class BedShear {
   // over comm (nullptr: one rank): two reductions over the columns.
   void measure(const Particles<Dim>& water, const Particles<Dim>& soil, const mpi::Comm* comm);
   // Deposits the suspended soil particles resting on calm beds and erodes the exposed ones by dt
-  // (nothing without excess-stress erosion).
+  // (nothing without excess-stress erosion). Right after measure(), on the same particles.
   void erode(Particles<Dim>& soil, double dt) const;
   // The friction on the water particles above wet beds, over dt.
   void brake(Particles<Dim>& water, double dt) const;
@@ -111,14 +112,15 @@ class BedShear {
   void slopes();
 
   Vec<Dim> lo_;
-  double h_, rho_w_, rho_s_;
+  double h_, inv_h_, rho_w_, rho_s_;
   bool floor_;
   BedShearSettings shear_;
   ExcessStressSettings erosion_;
   Vec<Dim> down_;                  // unit vector along gravity (zero without gravity)
   std::array<long, Dim> count_{};  // columns per axis (1 along y)
   std::vector<BedColumn<Dim>> columns_;
-  std::vector<double> sums_;  // per column: volume, mass, momentum (Dim)
+  std::vector<double> sums_;                // per column: volume, mass, momentum (Dim)
+  std::vector<std::uint32_t> soil_column_;  // each soil particle's column at measure()
 };
 
 }  // namespace suite::mpm2grid
