@@ -16,7 +16,9 @@ decomposition block), drag_ksp_max_iterations (consistent drag only, completed r
 summary.json values (outflow water volume, eroded soil volume, water front, end time; empty
 unless completed), peak RSS of each rank (kB, max and sum over ranks) when RSS_DIR is given, the
 largest kinetic energy in series.csv, dt_first / dt_last / dt_largest: the dt column of series.csv
-(the step before each sample; a step cut to land on a sample time is shorter, never longer).
+(the step before each sample; a step cut to land on a sample time is shorter, never longer),
+outflow_discharge_max: the largest water discharge through the outlet in series.csv (m^2/s in 2D,
+sampled at the output interval; empty without an outlet).
 Then per phase of the step (run.json "step/<phase>", solvers/mpm2grid/model/step_timers.hpp) and
 the two per-step checks outside it ("dt limit", "blow-up check"): ph_<phase>_mean and ph_<phase>_max,
 its seconds over the run, mean and largest over the ranks, and ph_<phase>_wait, the mean over the
@@ -34,7 +36,7 @@ COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "parti
            "migration_bytes_per_step", "migrated_particles_per_step", "rebalances", "particles_per_rank",
            "drag_ksp_max_iterations", "outflow_water_volume", "eroded_soil_volume", "water_front", "end_time",
            "dt_first", "dt_last", "rss_max_kb", "rss_sum_kb", "kinetic_energy_max", "dt_largest",
-           "halo_messages_per_step", "migration_messages_per_step"]
+           "halo_messages_per_step", "migration_messages_per_step", "outflow_discharge_max"]
 STEP_PHASES = ["balance", "grid", "halo plan", "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
                "boundary", "halo copy", "g2p water", "g2p soil", "outflow", "inlet", "migrate", "bed shear"]
 CHECKS = ["dt limit", "blow-up check"]
@@ -90,6 +92,8 @@ def metrics(run, rss_dir=None):
         m["particles_last"] = int(rows[-1]["water_particles"] + rows[-1]["soil_particles"])
         m["particles_mean"] = f"{particles_mean(rows):.1f}"
         m["kinetic_energy_max"] = f"{max(r['kinetic_energy'] for r in rows):.6g}"
+        if "outflow_water_discharge" in rows[0]:
+            m["outflow_discharge_max"] = f"{max(r['outflow_water_discharge'] for r in rows):.6g}"
         dts = [r["dt"] for r in rows if r["dt"] > 0]
         if dts:
             m["dt_first"], m["dt_last"], m["dt_largest"] = f"{dts[0]:.6g}", f"{dts[-1]:.6g}", f"{max(dts):.6g}"
