@@ -6,6 +6,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "carving/image/imgcodecs_plugin.hpp"
@@ -41,7 +42,7 @@ cv::Mat read_image(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(fmt::format("cannot read image '{}': no such file", path.string()));
-  if (has_png_signature(path)) return read_png_bgr(path);
+  if (auto png = read_png_bgr(path)) return std::move(*png);
   cv::Mat image;
   std::array<char, 512> detail{};
   const int failed = imgcodecs_reader(path)(path.c_str(), &image, detail.data(), detail.size());

@@ -7,6 +7,7 @@
 #include <csetjmp>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,17 +36,15 @@ void on_warning(png_structp, png_const_charp) {}  // e.g. unknown chunks: the pi
 
 }  // namespace
 
-bool has_png_signature(const std::filesystem::path& path) {
-  File f(std::fopen(path.c_str(), "rb"));
-  png_byte header[8] = {};
-  return f && std::fread(header, 1, sizeof header, f.get()) == sizeof header && png_sig_cmp(header, 0, 8) == 0;
-}
-
-cv::Mat read_png_bgr(const std::filesystem::path& path) {
+std::optional<cv::Mat> read_png_bgr(const std::filesystem::path& path) {
   std::vector<char> buffer(kFileBuffer);  // declared first: it outlives the stream
   File f(std::fopen(path.c_str(), "rb"));
   if (!f) throw InputError(fmt::format("cannot read image '{}': cannot open it", path.string()));
   std::setvbuf(f.get(), buffer.data(), _IOFBF, buffer.size());
+  png_byte signature[8] = {};
+  if (std::fread(signature, 1, sizeof signature, f.get()) != sizeof signature ||
+      png_sig_cmp(signature, 0, sizeof signature) != 0)
+    return std::nullopt;
   std::string error;
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, on_error, on_warning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -61,6 +60,7 @@ cv::Mat read_png_bgr(const std::filesystem::path& path) {
         fmt::format("cannot read image '{}': corrupt or truncated PNG (libpng: {})", path.string(), error));
   }
   png_init_io(png, f.get());
+  png_set_sig_bytes(png, sizeof signature);
   png_read_info(png, info);
   const int depth = png_get_bit_depth(png, info), type = png_get_color_type(png, info);
   // The conversions cv::imread(IMREAD_COLOR) makes: 8 bits per channel (16-bit samples keep their

@@ -4,16 +4,15 @@
 // its start-up (image_io.hpp reads the other formats through it, on demand).
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <optional>
 
 namespace suite::carving {
 
-// True when the file starts with PNG's eight-byte signature.
-bool has_png_signature(const std::filesystem::path& path);
-
 // A PNG as 8-bit BGR, converted as cv::imread(path, IMREAD_COLOR) converts it (16-bit samples
-// keep their high byte, grey and palette images are expanded, alpha is dropped); InputError
-// naming the file when it is corrupt or truncated.
-cv::Mat read_png_bgr(const std::filesystem::path& path);
+// keep their high byte, grey and palette images are expanded, alpha is dropped); nothing when the
+// file does not start with PNG's signature; InputError naming the file when it cannot be opened or
+// is a corrupt or truncated PNG.
+std::optional<cv::Mat> read_png_bgr(const std::filesystem::path& path);
 
 // An 8-bit grey or BGR image as PNG; zlib `compression_level` 0-9 (1: fastest that still
 // compresses). InputError naming the path when it cannot be written.

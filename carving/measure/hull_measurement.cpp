@@ -83,21 +83,27 @@ void principal_dimensions(const CarveResult& r, HullMeasurement& m) {
   m.thickness_mm = hi[2] - lo[2];
 }
 
-// The occupancy fractions of a carve at voxel centres, with one empty layer all round.
-ScalarField occupancy_field(const CarveResult& r) {
-  const VoxelGrid& g = r.grid;
+// Zero fractions at the centres of `g`'s voxels with one empty layer all round, and the index of
+// voxel (i, j, k) of `g` in it.
+ScalarField padded_field(const VoxelGrid& g) {
   ScalarField f;
   f.n = {g.n[0] + 2, g.n[1] + 2, g.n[2] + 2};
   f.spacing = g.voxel.x();
   f.origin = g.lo + g.voxel / 2 - g.voxel;
   f.values.assign(static_cast<std::size_t>(f.n[0]) * f.n[1] * f.n[2], 0.0f);
-  auto set = [&](int i, int j, int k, float v) {
-    f.values[static_cast<std::size_t>(i + 1) + f.n[0] * (static_cast<std::size_t>(j + 1) + f.n[1] * (k + 1))] = v;
-  };
+  return f;
+}
+std::size_t padded_index(const ScalarField& f, int i, int j, int k) {
+  return static_cast<std::size_t>(i + 1) + f.n[0] * (static_cast<std::size_t>(j + 1) + f.n[1] * (k + 1));
+}
+
+// The occupancy fractions of a carve at voxel centres, with one empty layer all round.
+ScalarField occupancy_field(const CarveResult& r) {
+  ScalarField f = padded_field(r.grid);
   for (const auto& b : kept_boxes(r))
     for (int k = b.first[2]; k <= b.last[2]; ++k)
       for (int j = b.first[1]; j <= b.last[1]; ++j)
-        for (int i = b.first[0]; i <= b.last[0]; ++i) set(i, j, k, static_cast<float>(b.weight));
+        for (int i = b.first[0]; i <= b.last[0]; ++i) f.values[padded_index(f, i, j, k)] = static_cast<float>(b.weight);
   return f;
 }
 
@@ -106,15 +112,8 @@ ScalarField occupancy_field(const CarveResult& r) {
 // voxel centres kept, which are the 2^3 samples a carve of `coarse` with subvoxel_samples = 2
 // would test.
 ScalarField occupancy_of_halves(const CarveResult& fine, const VoxelGrid& coarse) {
-  ScalarField f;
-  f.n = {coarse.n[0] + 2, coarse.n[1] + 2, coarse.n[2] + 2};
-  f.spacing = coarse.voxel.x();
-  f.origin = coarse.lo + coarse.voxel / 2 - coarse.voxel;
-  f.values.assign(static_cast<std::size_t>(f.n[0]) * f.n[1] * f.n[2], 0.0f);
-  for_each_kept_voxel(fine, [&](int i, int j, int k) {
-    f.values[static_cast<std::size_t>(i / 2 + 1) +
-             f.n[0] * (static_cast<std::size_t>(j / 2 + 1) + f.n[1] * (k / 2 + 1))] += 0.125f;
-  });
+  ScalarField f = padded_field(coarse);
+  for_each_kept_voxel(fine, [&](int i, int j, int k) { f.values[padded_index(f, i / 2, j / 2, k / 2)] += 0.125f; });
   return f;
 }
 

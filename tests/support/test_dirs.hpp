@@ -12,15 +12,19 @@
 
 namespace suite::testing {
 
-// <SUITE_TEST_TMP or the system temp>/<test suite>.<test name>/; emptied by rank 0 first.
-// COLLECTIVE over `comm`.
-inline std::filesystem::path scratch_dir(const mpi::Comm& comm) {
+// <SUITE_TEST_TMP or the system temp/suite-tests>/<test suite>.<test name><suffix>.
+inline std::filesystem::path scratch_name(const std::string& suffix) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const char* base = std::getenv("SUITE_TEST_TMP");
   const std::filesystem::path root =
       base ? std::filesystem::path(base) : std::filesystem::temp_directory_path() / "suite-tests";
-  const auto dir =
-      root / (std::string(info->test_suite_name()) + "." + info->name() + ".np" + std::to_string(comm.size()));
+  return root / (std::string(info->test_suite_name()) + "." + info->name() + suffix);
+}
+
+// scratch_name(".np<ranks>"), emptied by rank 0 first.
+// COLLECTIVE over `comm`.
+inline std::filesystem::path scratch_dir(const mpi::Comm& comm) {
+  const auto dir = scratch_name(".np" + std::to_string(comm.size()));
   if (comm.is_root()) {
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
@@ -29,14 +33,9 @@ inline std::filesystem::path scratch_dir(const mpi::Comm& comm) {
   return dir;
 }
 
-// <SUITE_TEST_TMP or the system temp>/suite-tests/<test suite>.<test name>/, emptied first; for
-// tests that run in one process.
+// scratch_name(""), emptied first; for tests that run in one process.
 inline std::filesystem::path scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const char* base = std::getenv("SUITE_TEST_TMP");
-  const std::filesystem::path root =
-      base ? std::filesystem::path(base) : std::filesystem::temp_directory_path() / "suite-tests";
-  const auto dir = root / (std::string(info->test_suite_name()) + "." + info->name());
+  const auto dir = scratch_name("");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
