@@ -25,6 +25,8 @@ if(SUITE_WITH_RICE)
   # ml: the random forest and SVM of the ASV classifiers; dnn: a user's ONNX network (libopencv-ml-dev and
   # libopencv-dnn-dev, both pulled in by libopencv-dev)
   find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs ml dnn)
+  # libtorch (libtorch-dev, CPU): trains and runs the convolutional network on grain crops (rice/cnn/)
+  find_package(Torch REQUIRED)
 endif()
 if(SUITE_WITH_STUDIES)
   find_package(OpenTURNS REQUIRED)

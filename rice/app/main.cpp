@@ -46,7 +46,11 @@ suite::cli::ProgramSpec program_spec() {
                            Option::number("noise", "SIGMA", "sensor noise, grey levels (default 4)"),
                            Option::count("touching-pairs", "P",
                                          "per photograph, P cells with two grains touching (grades 2-5; default 0)", 0),
-                           Option::flag("frame-cut", "move each photograph's last grain across its right edge")}},
+                           Option::flag("frame-cut", "move each photograph's last grain across its right edge"),
+                           Option::number("blend", "P",
+                                          "share of grains drawn with a neighbouring grade's appearance while "
+                                          "their photograph keeps its grade, as scorers disagree at the "
+                                          "boundaries (default 0; truth.csv's drawn_grade)")}},
               CommandSpec{"measure",
                           "segment every grain and its gel in each photograph (or folder of them) and write "
                           "DIR/results.csv: one row per grain (kernel area, pieces, solidity, gel area and ratio, "
@@ -74,8 +78,23 @@ suite::cli::ProgramSpec program_spec() {
                            Option::number("pixel-size", "MM", "size of a pixel on the dish (required)"),
                            Option::text("classes", "three|grades",
                                         "three: low (2-3), medium (4-5), high (6-7), the default; grades: 2 ... 7"),
-                           Option::text("model-type", "rtrees|svm", "random forest (default) or RBF SVM"),
+                           Option::text("model-type", "rtrees|svm|cnn",
+                                        "random forest on the traits (default), RBF SVM on the traits, or a "
+                                        "convolutional network on a crop around each grain (libtorch)"),
                            Option::count("trees", "N", "trees of the forest (default 100)", 1),
+                           Option::count("epochs", "N",
+                                         "cnn: most passes over the training crops; the pass with the lowest "
+                                         "validation loss is kept (default 80)",
+                                         1),
+                           Option::count("batch", "N", "cnn: crops per training step (default 16)", 1),
+                           Option::count("cnn-width", "C", "cnn: channels of the first convolution (default 8)", 1),
+                           Option::number("crop-mm", "MM", "cnn: side of the crop around each grain (default 14)"),
+                           Option::count("cnn-input", "PX",
+                                         "cnn: side of the network's input, the crop resized to it (default 48)", 8),
+                           Option::count("threads", "N",
+                                         "cnn: libtorch threads (default 1; results are "
+                                         "reproducible for a given N)",
+                                         1),
                            Option::count("folds", "K", "k-fold cross-validation (default 5; 0: none)", 0),
                            Option::number("validation-share", "F", "share of each class for validation (0.125)"),
                            Option::number("test-share", "F", "share of each class held out for the test (0.125)"),
@@ -97,8 +116,8 @@ suite::cli::ProgramSpec program_spec() {
                                         "crop_mm, normalisation; docs/rice.md), or a folder holding net.onnx and "
                                         "net.json"),
                            Option::flag("crops",
-                                        "with --onnx: also write DIR/crops/<image>_g<grain>.png, each "
-                                        "grain as the network sees it before normalisation"),
+                                        "with --onnx or a cnn model: also write DIR/crops/<image>_g<grain>.png, "
+                                        "each grain as the network sees it before normalisation"),
                            Option::number("pixel-size", "MM", "size of a pixel on the dish (required)")}},
           }};
 }
@@ -113,6 +132,7 @@ int render(const suite::cli::CommandArguments& c, suite::Logger& log) {
   o.dish.noise_sigma = c.number("noise").value_or(o.dish.noise_sigma);
   o.dish.touching_pairs = static_cast<int>(c.count_or("touching-pairs", 0));
   o.dish.frame_cut = c.has("frame-cut");
+  o.blend = c.number("blend").value_or(0.0);
   const std::filesystem::path out = c.text_or("out", "");
   const auto set = suite::rice::render_set(o, out);
   log.info("{} photographs, {} grains (grades {}), truth in {}", set.images.size(), set.truth.size(),
@@ -169,6 +189,21 @@ int train(const suite::cli::CommandArguments& c, suite::Logger& log) {
   o.validation_share = c.number("validation-share").value_or(o.validation_share);
   o.test_share = c.number("test-share").value_or(o.test_share);
   o.seed = static_cast<std::uint64_t>(c.count_or("seed", 1));
+  o.cnn.max_epochs = static_cast<int>(c.count_or("epochs", o.cnn.max_epochs));
+  o.cnn.width = static_cast<int>(c.count_or("cnn-width", o.cnn.width));
+  o.cnn.batch = static_cast<int>(c.count_or("batch", o.cnn.batch));
+  o.cnn.crop_mm = c.number("crop-mm").value_or(o.cnn.crop_mm);
+  o.cnn.input_px = static_cast<int>(c.count_or("cnn-input", o.cnn.input_px));
+  o.cnn.threads = static_cast<int>(c.count_or("threads", o.cnn.threads));
+  if (!(o.cnn.crop_mm > 0) || o.cnn.crop_mm > 100)
+    throw suite::InputError(fmt::format("--crop-mm {}: give the crop's side in mm, in (0, 100]", o.cnn.crop_mm));
+  if (o.model.kind != suite::rice::ModelKind::cnn)
+    for (const char* key : {"epochs", "batch", "cnn-width", "crop-mm", "cnn-input", "threads"})
+      if (c.has(key))
+        throw suite::InputError(
+            fmt::format("riceasv train: --{} is an option of the network; add --model-type cnn "
+                        "or leave it out",
+                        key));
   const std::filesystem::path out = c.text_or("out", "");
   const auto s = suite::rice::train_classifier(c.targets.at(0), o, m, out, log);
   if (!s.problems.empty())
@@ -187,11 +222,9 @@ int classify(const suite::cli::CommandArguments& c, suite::Logger& log) {
     throw suite::InputError(
         "riceasv classify: give either --model MODEL_DIR (a folder from `riceasv train`) or --onnx NET (a network "
         "of your own in ONNX, with NET.json beside it; docs/rice.md), not both and not neither");
-  if (c.has("crops") && !c.has("onnx"))
-    throw suite::InputError("riceasv classify: --crops goes with --onnx (the crops a network sees); leave it out");
   const auto s = c.has("onnx")
                      ? suite::rice::classify_images_onnx(targets, c.text_or("onnx", ""), m, out, c.has("crops"), log)
-                     : suite::rice::classify_images(targets, c.text_or("model", ""), m, out, log);
+                     : suite::rice::classify_images(targets, c.text_or("model", ""), m, out, c.has("crops"), log);
   log.info("{} grains classified ({} flagged) from {} images; table {}", s.grains, s.flagged, s.images,
            (out / "classes.csv").string());
   if (s.failed_images > 0)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -18,6 +19,7 @@
 #include "rice/classify/onnx_classifier.hpp"
 #include "rice/classify/trait_classifier.hpp"
 #include "rice/classify/trait_features.hpp"
+#include "rice/cnn/grain_cnn.hpp"
 #include "rice/measure/image_files.hpp"
 #include "rice/measure/measure_images.hpp"
 
@@ -95,11 +97,125 @@ ClassifySummary write_classification(const std::vector<ResultRow>& rows, const s
   return summary;
 }
 
+// A network that scores crops around the grains: a user's ONNX network or the suite's own CNN.
+struct CropNetwork {
+  OnnxSpec spec;                                              // the crop and the classes
+  std::function<std::vector<double>(const cv::Mat&)> scores;  // probabilities of one crop
+  std::string name;                                           // "ONNX network 'x.onnx'", "network 'DIR'"
+  nlohmann::json record;                                      // classify.json's description of the model
+};
+
+// Measures the images, crops every measured grain by the network's crop rule, scores it and writes
+// classes.csv, scores.csv, classify.json (and crops/ with `write_crops`). A photograph whose grains
+// cannot all be scored becomes a failed row; the others are kept.
+ClassifySummary classify_crops(const std::vector<std::filesystem::path>& targets, const CropNetwork& net,
+                               const MeasureOptions& measure, const std::filesystem::path& out, bool write_crops,
+                               Logger& log) {
+  const OnnxSpec& spec = net.spec;
+  const auto measured = measure_images(targets, measure, out, false, log);
+  if (write_crops) std::filesystem::create_directories(out / "crops");
+
+  std::string scores = fmt::format(
+      "# riceasv classify with {}: each class's score (probability) per grain; crop_x0, crop_y0: "
+      "the crop's top-left pixel in the photograph, crop_px its side ({} mm)\nimage,grain,status,crop_x0,crop_y0,"
+      "crop_px",
+      net.name, spec.crop_mm);
+  for (const auto& c : spec.classes) scores += ",score_" + c;
+  scores += "\n";
+  std::vector<ResultRow> rows;
+  std::vector<Prediction> predictions;
+  double forward_seconds = 0;
+  bool changed = false;
+  for (std::size_t i = 0; i < measured.size();) {
+    std::size_t j = i;
+    while (j < measured.size() && measured[j].image == measured[i].image) ++j;
+    const std::string& name = measured[i].image;
+    if (measured[i].status == "failed") {
+      rows.push_back(measured[i]);
+      i = j;
+      continue;
+    }
+    // This photograph's grains; committed only when every one of them ran.
+    std::vector<Prediction> here;
+    std::string lines;
+    try {
+      cv::Mat image = spec.channels == 1 ? read_grey(name) : cv::imread(name, cv::IMREAD_COLOR);
+      if (image.empty())
+        throw InputError(fmt::format("cannot read image '{}' in colour for the network; save it as PNG or JPEG", name));
+      for (std::size_t k = i; k < j; ++k) {
+        const ResultRow& r = measured[k];
+        cv::Rect region;
+        const cv::Mat crop =
+            crop_for_network(spec, image, r.traits.x_px, r.traits.y_px, measure.mm_per_px, r.levels.dish, &region);
+        const auto start = std::chrono::steady_clock::now();
+        const std::vector<double> s = net.scores(crop);
+        forward_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const auto best = std::max_element(s.begin(), s.end()) - s.begin();
+        here.push_back({static_cast<int>(best), s[static_cast<std::size_t>(best)]});
+        lines += fmt::format("{},{},{},{},{},{}", io::csv_field(name), r.traits.grain, r.status, region.x, region.y,
+                             region.width);
+        for (double v : s) lines += fmt::format(",{:.9g}", v);
+        lines += "\n";
+        if (write_crops) {
+          cv::Mat png = crop;
+          if (spec.channels == 3 && spec.rgb) cv::cvtColor(crop, png, cv::COLOR_RGB2BGR);
+          write_png(
+              out / "crops" / fmt::format("{}_g{}.png", std::filesystem::path(name).stem().string(), r.traits.grain),
+              png);
+        }
+      }
+    } catch (const InputError& e) {
+      rows.push_back(ResultRow::failed(name, e.what()));
+      changed = true;
+      i = j;
+      continue;
+    } catch (const cv::Exception& e) {
+      rows.push_back(ResultRow::failed(
+          name, fmt::format("the {} failed on a grain of '{}' ({}); check the network with a crop from --crops",
+                            net.name, name, e.err)));
+      changed = true;
+      i = j;
+      continue;
+    }
+    rows.insert(rows.end(), measured.begin() + static_cast<std::ptrdiff_t>(i),
+                measured.begin() + static_cast<std::ptrdiff_t>(j));
+    predictions.insert(predictions.end(), here.begin(), here.end());
+    scores += lines;
+    i = j;
+  }
+  if (changed) write_results(out / "results.csv", rows, measure.mm_per_px);
+  io::write_file_atomic(out / "scores.csv", scores);
+
+  const std::string header = fmt::format(
+      "# riceasv classify with {} (classes {}): class and its score (the network's probability) "
+      "per grain; flagged grains' classes are not to be trusted",
+      net.name, fmt::join(spec.classes, " "));
+  nlohmann::json record = net.record;
+  record["program"] = "riceasv classify";
+  record["input"] = {{"width", spec.width}, {"height", spec.height}, {"channels", spec.channels}};
+  record["crop_mm"] = spec.crop_mm;
+  record["pixel_size_mm"] = measure.mm_per_px;
+  record["predict_seconds_per_grain"] = predictions.empty() ? 0.0 : forward_seconds / predictions.size();
+  return write_classification(rows, predictions, spec.classes, header, record, out);
+}
+
 }  // namespace
 
 ClassifySummary classify_images(const std::vector<std::filesystem::path>& targets,
                                 const std::filesystem::path& model_dir, const MeasureOptions& measure,
-                                const std::filesystem::path& out, Logger& log) {
+                                const std::filesystem::path& out, bool write_crops, Logger& log) {
+  if (CnnClassifier::is_cnn_model(model_dir)) {
+    const CnnClassifier net = CnnClassifier::load(model_dir);
+    const CropNetwork crop_network{net.spec(),
+                                   [&net](const cv::Mat& crop) { return net.scores(crop); },
+                                   fmt::format("network '{}'", model_dir.string()),
+                                   {{"model", model_dir.string()}, {"model_type", "cnn"}}};
+    return classify_crops(targets, crop_network, measure, out, write_crops, log);
+  }
+  if (write_crops)
+    throw InputError(
+        fmt::format("--crops: the model in '{}' classifies traits, not crops; leave --crops out, or give a network",
+                    model_dir.string()));
   const TraitClassifier model = TraitClassifier::load(model_dir);
   const AsvClasses& classes = model.classes();
   const auto rows = measure_images(targets, measure, out, false, log);
@@ -129,95 +245,12 @@ ClassifySummary classify_images_onnx(const std::vector<std::filesystem::path>& t
                                      const std::filesystem::path& onnx, const MeasureOptions& measure,
                                      const std::filesystem::path& out, bool write_crops, Logger& log) {
   const OnnxClassifier net = OnnxClassifier::load(onnx);
-  const OnnxSpec& spec = net.spec();
-  const auto measured = measure_images(targets, measure, out, false, log);
-  if (write_crops) std::filesystem::create_directories(out / "crops");
-
-  std::string scores = fmt::format(
-      "# riceasv classify with ONNX network '{}': each class's score (probability) per grain; crop_x0, crop_y0: "
-      "the crop's top-left pixel in the photograph, crop_px its side ({} mm)\nimage,grain,status,crop_x0,crop_y0,"
-      "crop_px",
-      net.files().onnx.string(), spec.crop_mm);
-  for (const auto& c : spec.classes) scores += ",score_" + c;
-  scores += "\n";
-  std::vector<ResultRow> rows;
-  std::vector<Prediction> predictions;
-  double forward_seconds = 0;
-  bool changed = false;
-  for (std::size_t i = 0; i < measured.size();) {
-    std::size_t j = i;
-    while (j < measured.size() && measured[j].image == measured[i].image) ++j;
-    const std::string& name = measured[i].image;
-    if (measured[i].status == "failed") {
-      rows.push_back(measured[i]);
-      i = j;
-      continue;
-    }
-    // This photograph's grains; committed only when every one of them ran.
-    std::vector<Prediction> here;
-    std::string lines;
-    try {
-      cv::Mat image = spec.channels == 1 ? read_grey(name) : cv::imread(name, cv::IMREAD_COLOR);
-      if (image.empty())
-        throw InputError(fmt::format("cannot read image '{}' in colour for the network; save it as PNG or JPEG", name));
-      for (std::size_t k = i; k < j; ++k) {
-        const ResultRow& r = measured[k];
-        cv::Rect region;
-        const cv::Mat crop = net.crop(image, r.traits.x_px, r.traits.y_px, measure.mm_per_px, r.levels.dish, &region);
-        const auto start = std::chrono::steady_clock::now();
-        const std::vector<double> s = net.scores(crop);
-        forward_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const auto best = std::max_element(s.begin(), s.end()) - s.begin();
-        here.push_back({static_cast<int>(best), s[static_cast<std::size_t>(best)]});
-        lines += fmt::format("{},{},{},{},{},{}", io::csv_field(name), r.traits.grain, r.status, region.x, region.y,
-                             region.width);
-        for (double v : s) lines += fmt::format(",{:.9g}", v);
-        lines += "\n";
-        if (write_crops) {
-          cv::Mat png = crop;
-          if (spec.channels == 3 && spec.rgb) cv::cvtColor(crop, png, cv::COLOR_RGB2BGR);
-          write_png(
-              out / "crops" / fmt::format("{}_g{}.png", std::filesystem::path(name).stem().string(), r.traits.grain),
-              png);
-        }
-      }
-    } catch (const InputError& e) {
-      rows.push_back(ResultRow::failed(name, e.what()));
-      changed = true;
-      i = j;
-      continue;
-    } catch (const cv::Exception& e) {
-      rows.push_back(ResultRow::failed(
-          name, fmt::format("the ONNX network failed on a grain of '{}' ({}); check the network with a crop "
-                            "from --crops",
-                            name, e.err)));
-      changed = true;
-      i = j;
-      continue;
-    }
-    rows.insert(rows.end(), measured.begin() + static_cast<std::ptrdiff_t>(i),
-                measured.begin() + static_cast<std::ptrdiff_t>(j));
-    predictions.insert(predictions.end(), here.begin(), here.end());
-    scores += lines;
-    i = j;
-  }
-  if (changed) write_results(out / "results.csv", rows, measure.mm_per_px);
-  io::write_file_atomic(out / "scores.csv", scores);
-
-  const std::string header = fmt::format(
-      "# riceasv classify with ONNX network '{}' (classes {}): class and its score (the network's probability) "
-      "per grain; flagged grains' classes are not to be trusted",
-      net.files().onnx.string(), fmt::join(spec.classes, " "));
-  const nlohmann::json record = {
-      {"program", "riceasv classify"},
-      {"model", net.files().onnx.string()},
-      {"model_type", "onnx"},
-      {"model_description", net.files().json.string()},
-      {"input", {{"width", spec.width}, {"height", spec.height}, {"channels", spec.channels}}},
-      {"crop_mm", spec.crop_mm},
-      {"pixel_size_mm", measure.mm_per_px},
-      {"predict_seconds_per_grain", predictions.empty() ? 0.0 : forward_seconds / predictions.size()}};
-  return write_classification(rows, predictions, spec.classes, header, record, out);
+  const CropNetwork crop_network{
+      net.spec(),
+      [&net](const cv::Mat& crop) { return net.scores(crop); },
+      fmt::format("ONNX network '{}'", net.files().onnx.string()),
+      {{"model", net.files().onnx.string()}, {"model_type", "onnx"}, {"model_description", net.files().json.string()}}};
+  return classify_crops(targets, crop_network, measure, out, write_crops, log);
 }
 
 }  // namespace suite::rice

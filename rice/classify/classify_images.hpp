@@ -26,9 +26,11 @@ struct ClassifySummary {
   std::string first_failure;  // the first failed image's message
 };
 
+// A network trained with `--model-type cnn` is run as an ONNX network is below (crops, scores.csv and,
+// with `write_crops`, the crops); `write_crops` with a traits model is an InputError.
 ClassifySummary classify_images(const std::vector<std::filesystem::path>& targets,
                                 const std::filesystem::path& model_dir, const MeasureOptions& measure,
-                                const std::filesystem::path& out, Logger& log);
+                                const std::filesystem::path& out, bool write_crops, Logger& log);
 
 // The same with a user's ONNX network (onnx_classifier.hpp; `onnx` is NET.onnx with NET.json beside it,
 // or a folder holding net.onnx and net.json): each measured grain is cropped around its centroid, run

@@ -13,6 +13,7 @@
 #include "rice/classify/confusion_chart.hpp"
 #include "rice/classify/labelled_images.hpp"
 #include "rice/classify/trait_features.hpp"
+#include "rice/measure/image_files.hpp"
 #include "rice/measure/measure_images.hpp"
 
 namespace suite::rice {
@@ -58,6 +59,20 @@ void write_samples(const std::filesystem::path& file, const std::vector<Sample>&
                         cv.label >= 0 && std::isfinite(cv.share) ? fmt::format("{:.3f}", cv.share) : "");
   }
   io::write_file_atomic(file, text);
+}
+
+// The network's input for each ok grain (`used` rows, in order): its crop as one CV_8U row.
+cv::Mat crops_of(const std::vector<Sample>& samples, const OnnxSpec& spec, double mm_per_px) {
+  cv::Mat crops;
+  std::string open;
+  cv::Mat image;
+  for (const auto& s : samples) {
+    if (s.used < 0) continue;
+    if (s.row->image != open) image = read_grey(open = s.row->image);
+    const auto& g = s.row->traits;
+    crops.push_back(crop_for_network(spec, image, g.x_px, g.y_px, mm_per_px, s.row->levels.dish).reshape(1, 1));
+  }
+  return crops;
 }
 
 }  // namespace
@@ -118,7 +133,15 @@ TrainSummary train_classifier(const std::filesystem::path& labels, const TrainOp
   if (summary.grains_excluded > 0)
     log.info("{} flagged grain(s) not trained on (touching or cut by the frame)", summary.grains_excluded);
 
-  const Evaluation e = train_and_evaluate(features, used_labels, options);
+  // The network learns from each ok grain's crop, the others from its features.
+  double crop_seconds = 0;
+  cv::Mat samples_matrix = features;
+  if (options.model.kind == ModelKind::cnn) {
+    const auto crop_start = std::chrono::steady_clock::now();
+    samples_matrix = crops_of(samples, cnn_crop_spec(options.cnn), measure.mm_per_px);
+    crop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - crop_start).count();
+  }
+  const Evaluation e = train_and_evaluate(samples_matrix, used_labels, options, *make_learner(options));
   summary.test_accuracy = e.test.accuracy();
   summary.cv_accuracy = e.cross_validation.accuracy();
 
@@ -164,15 +187,16 @@ TrainSummary train_classifier(const std::filesystem::path& labels, const TrainOp
                                      {"cross_validation", cv},
                                      {"times_s",
                                       {{"measure", measure_seconds},
+                                       {"crop", crop_seconds},
                                        {"fit_final_model", e.fit_seconds},
                                        {"predict_per_grain", e.predict_seconds_per_grain}}}};
-  e.model.save(out, {{"labels", labels.string()},
-                     {"pixel_size_mm", measure.mm_per_px},
-                     {"grains", summary.grains_used + 0},
-                     {"fitted_on", e.split.train.size() + e.split.validation.size()},
-                     {"test_accuracy", finite(summary.test_accuracy)},
-                     {"cv_accuracy", finite(summary.cv_accuracy)},
-                     {"evaluation", "evaluation.json"}});
+  e.model->save(out, {{"labels", labels.string()},
+                      {"pixel_size_mm", measure.mm_per_px},
+                      {"grains", summary.grains_used + 0},
+                      {"fitted_on", e.split.train.size() + e.split.validation.size()},
+                      {"test_accuracy", finite(summary.test_accuracy)},
+                      {"cv_accuracy", finite(summary.cv_accuracy)},
+                      {"evaluation", "evaluation.json"}});
   io::write_file_atomic(out / "evaluation.json", evaluation.dump(2) + "\n");
   io::write_file_atomic(out / "confusion_test.csv", e.test.to_csv());
   std::vector<ConfusionPanel> panels = {{"test split", e.test}};

@@ -20,7 +20,7 @@ std::vector<int> labels_of(const std::vector<int>& labels, const std::vector<int
   return out;
 }
 
-Confusion judge(const TraitClassifier& model, const cv::Mat& features, const std::vector<int>& labels,
+Confusion judge(const FittedModel& model, const cv::Mat& features, const std::vector<int>& labels,
                 const std::vector<int>& rows, const AsvClasses& classes, std::vector<int>* predicted = nullptr) {
   Confusion confusion(classes.names);
   const auto predictions = model.predict(select_rows(features, rows));
@@ -39,7 +39,8 @@ cv::Mat select_rows(const cv::Mat& features, const std::vector<int>& rows) {
   return out;
 }
 
-Evaluation train_and_evaluate(const cv::Mat& features, const std::vector<int>& labels, const TrainOptions& options) {
+Evaluation train_and_evaluate(const cv::Mat& samples, const std::vector<int>& labels, const TrainOptions& options,
+                              Learner& learner) {
   const AsvClasses& classes = options.classes;
   std::vector<long> per_class(static_cast<std::size_t>(classes.count()), 0);
   for (int l : labels) per_class.at(static_cast<std::size_t>(l)) += 1;
@@ -50,57 +51,35 @@ Evaluation train_and_evaluate(const cv::Mat& features, const std::vector<int>& l
                       "of grade {} (flagged grains, touching or cut by the frame, are not used)",
                       classes.names[static_cast<std::size_t>(c)], classes.grades_of(c), classes.grades_of(c)));
   const int n = static_cast<int>(labels.size());
-  ModelOptions model = options.model;
-  model.seed = options.seed;
 
   // 1. The split.
-  const Split split = stratified_split(labels, options.validation_share, options.test_share, options.seed);
-  nlohmann::json selection = {{"by", "validation accuracy"}};
+  Evaluation e;
+  e.split = stratified_split(labels, options.validation_share, options.test_share, options.seed);
+  e.validation = e.test = e.cross_validation = Confusion(classes.names);
+  e.test_predicted.assign(static_cast<std::size_t>(n), -1);
+  e.cv_predicted.assign(static_cast<std::size_t>(n), Prediction{});
+  e.fold.assign(static_cast<std::size_t>(n), -1);
+  const Split& split = e.split;
 
-  // 2. The forest's depth on the validation grains.
-  Confusion validation(classes.names);
-  if (model.kind == ModelKind::rtrees && !split.validation.empty()) {
-    const cv::Mat train = select_rows(features, split.train);
-    double best = -1;
-    int best_depth = model.max_depth;
-    for (int depth : {4, 8, 16}) {
-      ModelOptions trial = model;
-      trial.max_depth = depth;
-      const auto fitted = TraitClassifier::fit(train, labels_of(labels, split.train), classes, trial);
-      Confusion c = judge(fitted, features, labels, split.validation, classes);
-      selection["tried"].push_back({{"max_depth", depth}, {"validation_accuracy", c.accuracy()}});
-      if (c.accuracy() > best) best = c.accuracy(), best_depth = depth, validation = c;
-    }
-    model.max_depth = best_depth;
-    selection["max_depth"] = best_depth;
-  } else {
-    selection["by"] = model.kind == ModelKind::svm ? "OpenCV trainAuto (C, gamma; 5-fold on the training grains)"
-                                                   : "none: no validation grains, the default depth";
-  }
+  // 2. The learner's parameters on the validation grains.
+  std::vector<Prediction> validation_predicted;
+  e.selection =
+      learner.select(select_rows(samples, split.train), labels_of(labels, split.train),
+                     select_rows(samples, split.validation), labels_of(labels, split.validation), validation_predicted);
+  for (std::size_t i = 0; i < validation_predicted.size(); ++i)
+    e.validation.add(labels[static_cast<std::size_t>(split.validation[i])], validation_predicted[i].label);
 
   // 3. The final model on train + validation, judged on the test grains.
   std::vector<int> fit_rows = split.train;
   fit_rows.insert(fit_rows.end(), split.validation.begin(), split.validation.end());
   const auto start = std::chrono::steady_clock::now();
-  TraitClassifier final_model =
-      TraitClassifier::fit(select_rows(features, fit_rows), labels_of(labels, fit_rows), classes, model);
-  Evaluation e{std::move(final_model),
-               split,
-               selection,
-               validation,
-               Confusion(classes.names),
-               Confusion(classes.names),
-               {},
-               std::vector<int>(static_cast<std::size_t>(n), -1),
-               std::vector<Prediction>(static_cast<std::size_t>(n)),
-               std::vector<int>(static_cast<std::size_t>(n), -1),
-               seconds_since(start),
-               0};
-  if (model.kind == ModelKind::svm && !split.validation.empty())
-    e.validation = judge(e.model, features, labels, split.validation, classes);  // seen in the fit: for reference
-  e.test = judge(e.model, features, labels, split.test, classes, &e.test_predicted);
+  e.model = learner.fit(select_rows(samples, fit_rows), labels_of(labels, fit_rows));
+  e.fit_seconds = seconds_since(start);
+  if (validation_predicted.empty() && !split.validation.empty())
+    e.validation = judge(*e.model, samples, labels, split.validation, classes);  // seen in the fit: for reference
+  e.test = judge(*e.model, samples, labels, split.test, classes, &e.test_predicted);
   const auto timed = std::chrono::steady_clock::now();
-  (void)e.model.predict(features);
+  (void)e.model->predict(samples);
   e.predict_seconds_per_grain = n > 0 ? seconds_since(timed) / n : 0;
 
   // 4. k-fold cross-validation with the chosen parameters.
@@ -109,8 +88,8 @@ Evaluation train_and_evaluate(const cv::Mat& features, const std::vector<int>& l
     for (int f = 0; f < options.folds; ++f) {
       std::vector<int> in, out;
       for (int i = 0; i < n; ++i) (e.fold[static_cast<std::size_t>(i)] == f ? out : in).push_back(i);
-      const auto fitted = TraitClassifier::fit(select_rows(features, in), labels_of(labels, in), classes, model);
-      const auto predictions = fitted.predict(select_rows(features, out));
+      const auto fitted = learner.fit(select_rows(samples, in), labels_of(labels, in));
+      const auto predictions = fitted->predict(select_rows(samples, out));
       Confusion c(classes.names);
       for (std::size_t i = 0; i < out.size(); ++i) {
         c.add(labels[static_cast<std::size_t>(out[i])], predictions[i].label);
@@ -121,6 +100,23 @@ Evaluation train_and_evaluate(const cv::Mat& features, const std::vector<int>& l
     }
   }
   return e;
+}
+
+std::unique_ptr<Learner> make_learner(const TrainOptions& options) {
+  if (options.model.kind == ModelKind::cnn) {
+    CnnOptions cnn = options.cnn;
+    cnn.seed = options.seed;
+    return std::make_unique<CnnLearner>(options.classes, cnn);
+  }
+  ModelOptions model = options.model;
+  model.seed = options.seed;
+  return std::make_unique<TraitLearner>(options.classes, model);
+}
+
+Evaluation train_and_evaluate(const cv::Mat& features, const std::vector<int>& labels, const TrainOptions& options) {
+  if (options.model.kind == ModelKind::cnn)
+    throw std::logic_error("train_and_evaluate: a cnn learns from crops; give its learner (make_learner)");
+  return train_and_evaluate(features, labels, options, *make_learner(options));
 }
 
 }  // namespace suite::rice

@@ -55,14 +55,25 @@ nlohmann::json read_model_json(const std::filesystem::path& dir) {
 }  // namespace
 
 std::string to_string(ModelKind kind) {
-  return kind == ModelKind::rtrees ? "rtrees" : "svm";
+  switch (kind) {
+    case ModelKind::rtrees:
+      return "rtrees";
+    case ModelKind::svm:
+      return "svm";
+    case ModelKind::cnn:
+      return "cnn";
+  }
+  return "unknown";
 }
 
 ModelKind parse_model_kind(const std::string& text) {
   if (text == "rtrees") return ModelKind::rtrees;
   if (text == "svm") return ModelKind::svm;
+  if (text == "cnn") return ModelKind::cnn;
   throw InputError(
-      fmt::format("--model-type '{}': give 'rtrees' (a random forest) or 'svm' (RBF support vectors)", text));
+      fmt::format("--model-type '{}': give 'rtrees' (a random forest), 'svm' (RBF support vectors) or 'cnn' (a "
+                  "convolutional network on a crop around each grain)",
+                  text));
 }
 
 TraitClassifier TraitClassifier::fit(const cv::Mat& features, const std::vector<int>& labels, const AsvClasses& classes,
@@ -70,6 +81,7 @@ TraitClassifier TraitClassifier::fit(const cv::Mat& features, const std::vector<
   const int n_features = static_cast<int>(feature_names().size());
   if (features.type() != CV_32F || features.cols != n_features || features.rows != static_cast<int>(labels.size()))
     throw std::logic_error("TraitClassifier::fit: features must be CV_32F, one row per label, one column per feature");
+  if (options.kind == ModelKind::cnn) throw std::logic_error("TraitClassifier::fit: a cnn is not a trait classifier");
   const std::set<int> present(labels.begin(), labels.end());
   if (present.size() < 2)
     throw InputError(
@@ -176,23 +188,17 @@ nlohmann::json TraitClassifier::description() const {
 }
 
 void TraitClassifier::save(const std::filesystem::path& dir, const nlohmann::json& training) const {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec)
-    throw InputError(fmt::format("cannot create the model folder '{}': {}; choose a folder you can write", dir.string(),
-                                 ec.message()));
+  create_model_folder(dir);
   const auto yml = dir / "model.yml";
   try {
     model_->save(yml.string());
   } catch (const cv::Exception& e) {
     throw InputError(fmt::format("cannot write '{}': {}; choose a folder you can write", yml.string(), e.err));
   }
-  nlohmann::json grades = nlohmann::json::array();
-  for (int c = 0; c < classes_.count(); ++c) grades.push_back(classes_.grades_of(c));
   nlohmann::json j = {{"format", kFormat},
                       {"version", kVersion},
                       {"model_file", "model.yml"},
-                      {"classes", {{"scheme", classes_.scheme}, {"names", classes_.names}, {"grades", grades}}},
+                      {"classes", classes_json(classes_)},
                       {"features", feature_names()},
                       {"ratio_cap", kRatioCap},
                       {"feature_notes",
@@ -258,6 +264,37 @@ TraitClassifier TraitClassifier::load(const std::filesystem::path& dir) {
                                  yml.string(), wanted, feature_names().size(), top.empty() ? "unreadable" : top,
                                  opencv_node(c.options_.kind), train_again(dir)));
   return c;
+}
+
+std::unique_ptr<FittedModel> TraitLearner::fit(const cv::Mat& features, const std::vector<int>& labels) const {
+  return std::make_unique<TraitClassifier>(TraitClassifier::fit(features, labels, classes_, options_));
+}
+
+nlohmann::json TraitLearner::select(const cv::Mat& train, const std::vector<int>& train_labels,
+                                    const cv::Mat& validation, const std::vector<int>& validation_labels,
+                                    std::vector<Prediction>& validation_predicted) {
+  nlohmann::json selection = {{"by", "validation accuracy"}};
+  validation_predicted.clear();
+  if (options_.kind != ModelKind::rtrees || validation.rows == 0) {
+    selection["by"] = options_.kind == ModelKind::svm ? "OpenCV trainAuto (C, gamma; 5-fold on the training grains)"
+                                                      : "none: no validation grains, the default depth";
+    return selection;
+  }
+  double best = -1;
+  int best_depth = options_.max_depth;
+  for (int depth : {4, 8, 16}) {
+    ModelOptions trial = options_;
+    trial.max_depth = depth;
+    const auto predicted = TraitClassifier::fit(train, train_labels, classes_, trial).predict(validation);
+    int right = 0;
+    for (std::size_t i = 0; i < predicted.size(); ++i) right += predicted[i].label == validation_labels[i];
+    const double accuracy = static_cast<double>(right) / validation.rows;
+    selection["tried"].push_back({{"max_depth", depth}, {"validation_accuracy", accuracy}});
+    if (accuracy > best) best = accuracy, best_depth = depth, validation_predicted = predicted;
+  }
+  options_.max_depth = best_depth;
+  selection["max_depth"] = best_depth;
+  return selection;
 }
 
 }  // namespace suite::rice

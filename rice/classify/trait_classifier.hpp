@@ -20,12 +20,14 @@
 #include <vector>
 
 #include "rice/classify/asv_classes.hpp"
+#include "rice/classify/fitted_model.hpp"
 
 namespace suite::rice {
 
-enum class ModelKind { rtrees, svm };
+// rtrees and svm are this file's; cnn is the convolutional network on crops (rice/cnn/).
+enum class ModelKind { rtrees, svm, cnn };
 std::string to_string(ModelKind kind);
-// "rtrees" or "svm"; InputError naming --model-type otherwise.
+// "rtrees", "svm" or "cnn"; InputError naming --model-type otherwise.
 ModelKind parse_model_kind(const std::string& text);
 
 struct ModelOptions {
@@ -36,27 +38,24 @@ struct ModelOptions {
   std::uint64_t seed = 1;    // rtrees: bootstrap samples and feature draws
 };
 
-struct Prediction {
-  int label = -1;     // class index
-  double share = -1;  // rtrees: share of the trees that voted for it, in (0, 1]; svm: NaN
-};
-
-class TraitClassifier {
+class TraitClassifier : public FittedModel {
  public:
   // Trains on `features` (CV_32F, one row per grain, feature_names() columns) and each row's class
-  // index in `classes`. InputError when the rows hold fewer than two classes.
+  // index in `classes` (options.kind rtrees or svm). InputError when the rows hold fewer than two
+  // classes.
   static TraitClassifier fit(const cv::Mat& features, const std::vector<int>& labels, const AsvClasses& classes,
                              const ModelOptions& options);
 
-  std::vector<Prediction> predict(const cv::Mat& features) const;
+  // Prediction::share: rtrees the share of the trees that voted for the class; svm NaN.
+  std::vector<Prediction> predict(const cv::Mat& features) const override;
 
   // Writes DIR/model.yml and DIR/model.json; `training` goes under the latter's "training" key.
-  void save(const std::filesystem::path& dir, const nlohmann::json& training) const;
+  void save(const std::filesystem::path& dir, const nlohmann::json& training) const override;
   // A saved model; InputError naming the file and the fix when the folder, either file, the format,
   // the model's kind or its features are not what `riceasv train` writes.
   static TraitClassifier load(const std::filesystem::path& dir);
 
-  const AsvClasses& classes() const { return classes_; }
+  const AsvClasses& classes() const override { return classes_; }
   const ModelOptions& options() const { return options_; }
   // The model's parameters, the scaling and (rtrees) each feature's importance, for model.json.
   nlohmann::json description() const;
@@ -68,6 +67,23 @@ class TraitClassifier {
   ModelOptions options_;
   std::vector<double> mean_, scale_;
   cv::Ptr<cv::ml::StatModel> model_;
+};
+
+// Fits trait classifiers of one kind (rtrees or svm); select() chooses the forest's depth from
+// {4, 8, 16} by validation accuracy (ties go to the shallower forest); an SVM's C and gamma are chosen
+// by OpenCV's trainAuto inside every fit, so select() fits nothing for it.
+class TraitLearner : public Learner {
+ public:
+  TraitLearner(AsvClasses classes, ModelOptions options) : classes_(std::move(classes)), options_(options) {}
+  std::unique_ptr<FittedModel> fit(const cv::Mat& features, const std::vector<int>& labels) const override;
+  nlohmann::json select(const cv::Mat& train, const std::vector<int>& train_labels, const cv::Mat& validation,
+                        const std::vector<int>& validation_labels,
+                        std::vector<Prediction>& validation_predicted) override;
+  const ModelOptions& options() const { return options_; }
+
+ private:
+  AsvClasses classes_;
+  ModelOptions options_;
 };
 
 }  // namespace suite::rice

@@ -21,7 +21,28 @@ std::string number(double x) {
   return std::isfinite(x) ? fmt::format("{:.6g}", x) : "";
 }
 
+// A grain of `grade`: like grade - 1 with probability blend / 2, like grade + 1 with blend / 2 (the
+// ends of the scale have one neighbour, drawn with blend / 2).
+int blended_grade(int grade, double blend, std::mt19937_64& rng) {
+  const double u = std::uniform_real_distribution<double>(0, 1)(rng);
+  if (u < blend / 2) return grade > kLowestGrade ? grade - 1 : grade;
+  if (u < blend) return grade < kHighestGrade ? grade + 1 : grade;
+  return grade;
+}
+
 }  // namespace
+
+double blend_ceiling(const std::vector<int>& grades, double blend, const std::vector<int>& classes_of_grade) {
+  auto class_of = [&](int g) { return classes_of_grade.at(static_cast<std::size_t>(g - kLowestGrade)); };
+  double kept = 0;
+  for (int g : grades) {
+    double same = 1 - blend;
+    same += (g > kLowestGrade ? (class_of(g - 1) == class_of(g)) : 1) * blend / 2;
+    same += (g < kHighestGrade ? (class_of(g + 1) == class_of(g)) : 1) * blend / 2;
+    kept += same;
+  }
+  return grades.empty() ? 1.0 : kept / static_cast<double>(grades.size());
+}
 
 std::uint64_t image_seed(std::uint64_t seed, int grade, int k) {
   std::seed_seq sequence{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
@@ -76,23 +97,25 @@ const std::vector<std::string>& truth_columns() {
                                                    "kernel_pieces",
                                                    "kernel_share",
                                                    "touching",
-                                                   "cut_by_frame"};
+                                                   "cut_by_frame",
+                                                   "drawn_grade"};
   return columns;
 }
 
 void write_truth(const std::filesystem::path& file, const std::vector<TruthRow>& rows, double mm_per_px) {
   std::string text = fmt::format(
       "# riceasv render ground truth, pixel size {} mm: positions in pixels, angle in degrees, lengths in mm, "
-      "areas in mm^2; ratio, completeness and share are fractions (ratio empty without a kernel)\n{}\n",
+      "areas in mm^2; ratio, completeness and share are fractions (ratio empty without a kernel); grade: the "
+      "photograph's, drawn_grade: the grade whose appearance the grain was drawn with (render --blend)\n{}\n",
       mm_per_px, fmt::join(truth_columns(), ","));
   for (const auto& r : rows) {
     const GrainSpec& s = r.grain.spec;
     const GrainTruth& t = r.grain.truth;
-    text += fmt::format("{},{},{},{:.2f},{:.2f},{:.2f},{:.4f},{:.4f},{},{},{},{},{},{},{},{}\n", r.image, r.grain.index,
-                        s.grade, s.centre_px.x, s.centre_px.y, s.angle_deg, s.length_mm, s.width_mm,
+    text += fmt::format("{},{},{},{:.2f},{:.2f},{:.2f},{:.4f},{:.4f},{},{},{},{},{},{},{},{},{}\n", r.image,
+                        r.grain.index, r.grade, s.centre_px.x, s.centre_px.y, s.angle_deg, s.length_mm, s.width_mm,
                         number(t.kernel_area_mm2), number(t.gel_area_mm2), number(t.gel_kernel_ratio),
                         number(t.collar_completeness), t.kernel_pieces, number(t.kernel_share), s.touching ? 1 : 0,
-                        r.grain.cut_by_frame ? 1 : 0);
+                        r.grain.cut_by_frame ? 1 : 0, s.grade);
   }
   io::write_file_atomic(file, text);
 }
@@ -102,6 +125,9 @@ RenderedSet render_set(const RenderSetOptions& o, const std::filesystem::path& o
   if (o.per_grade < 1) throw InputError(fmt::format("--per-grade {}: give at least 1", o.per_grade));
   if (o.per_image < 1) throw InputError(fmt::format("--per-image {}: give at least 1", o.per_image));
   for (int g : o.grades) (void)appearance(g);
+  if (!(o.blend >= 0 && o.blend <= 1))
+    throw InputError(
+        fmt::format("--blend {}: give the share of grains drawn like a neighbouring grade, in [0, 1]", o.blend));
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec)
@@ -113,11 +139,14 @@ RenderedSet render_set(const RenderSetOptions& o, const std::filesystem::path& o
       const int n = std::min(left, o.per_image);
       left -= n;
       std::mt19937_64 rng(image_seed(o.seed, grade, k));
-      const RenderedDish dish = render_dish(std::vector<int>(static_cast<std::size_t>(n), grade), o.dish, rng);
+      std::vector<int> drawn(static_cast<std::size_t>(n), grade);
+      if (o.blend > 0)  // no draw at all without blending: the photographs stay as they were
+        for (int& d : drawn) d = blended_grade(grade, o.blend, rng);
+      const RenderedDish dish = render_dish(drawn, o.dish, rng);
       const std::string name = fmt::format("asv{}_{:02}.png", grade, k);
       write_png(out / name, dish.image);
       set.images.push_back(out / name);
-      for (const auto& g : dish.grains) set.truth.push_back({name, g});
+      for (const auto& g : dish.grains) set.truth.push_back({name, grade, g});
     }
   }
   write_truth(out / "truth.csv", set.truth, o.dish.mm_per_px);
@@ -127,6 +156,7 @@ RenderedSet render_set(const RenderSetOptions& o, const std::filesystem::path& o
                                  {"per_grade", o.per_grade},
                                  {"per_image", o.per_image},
                                  {"seed", o.seed},
+                                 {"blend", o.blend},
                                  {"pixel_size_mm", o.dish.mm_per_px},
                                  {"cell_mm", o.dish.cell_mm},
                                  {"dish_level", o.dish.dish_level},

@@ -1,13 +1,16 @@
 // Tests of the synthetic renderer of grains in alkali: the scale, the collar's angular coverage,
-// the drawn kernel against the analytic superellipse, the pieces of a split kernel, determinism.
+// the drawn kernel against the analytic superellipse, the pieces of a split kernel, determinism,
+// and grains drawn with a neighbouring grade's appearance (--blend).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "core/errors.hpp"
+#include "core/mpi/comm.hpp"
 #include "rice/render/dish_renderer.hpp"
 #include "rice/render/grade_scale.hpp"
 #include "rice/render/grain_shape.hpp"
@@ -104,6 +107,41 @@ TEST(DishRenderer, BadOptionsNameTheOption) {
   o.mm_per_px = 0.5;
   std::mt19937_64 rng(1);
   EXPECT_NE(testing::input_error_of([&] { render_dish({2}, o, rng); }).find("pixel size 0.5 mm is outside"),
+            std::string::npos);
+}
+
+TEST(RenderSet, BlendDrawsNeighbouringGradesAtTheGivenShare) {
+  // 120 grains per grade at 0.1 mm per pixel (small photographs). Each grain looks like its own
+  // grade or a neighbour; the share drawn otherwise is P (grade 2 and 7: P/2, one neighbour each
+  // drawn with P/2), within 4 binomial standard deviations; labels stay the photograph's grade.
+  const auto dir = testing::scratch_dir(mpi::Comm(MPI_COMM_SELF)) / "blend";
+  RenderSetOptions o;
+  o.per_grade = 120;
+  o.seed = 4;
+  o.blend = 0.4;
+  o.dish.mm_per_px = 0.1;
+  const auto set = render_set(o, dir);
+  std::map<int, std::pair<int, int>> moved;  // grade -> (drawn otherwise, grains)
+  for (const auto& row : set.truth) {
+    const int drawn = row.grain.spec.grade;
+    EXPECT_EQ(std::to_string(row.grade), row.image.substr(3, 1));  // asv<grade>_<k>.png
+    EXPECT_LE(std::abs(drawn - row.grade), 1) << row.image;
+    moved[row.grade].first += drawn != row.grade;
+    moved[row.grade].second += 1;
+  }
+  for (const auto& [grade, counts] : moved) {
+    const double p = grade == 2 || grade == 7 ? o.blend / 2 : o.blend, n = counts.second;
+    EXPECT_NEAR(counts.first / n, p, 4 * std::sqrt(p * (1 - p) / n)) << "grade " << grade;
+  }
+  // Three classes: grades 3, 4, 5 and 6 lose P/2 across a class boundary, 2 and 7 none: 1 - P/3.
+  // Six grades: every draw of a neighbour crosses: 1 - (2 P/2 + 4 P) / 6 = 1 - 5P/6.
+  EXPECT_NEAR(blend_ceiling(o.grades, 0.3, {0, 0, 1, 1, 2, 2}), 0.9, 1e-12);
+  EXPECT_NEAR(blend_ceiling(o.grades, 0.3, {0, 1, 2, 3, 4, 5}), 0.75, 1e-12);
+  EXPECT_NE(testing::input_error_of([&] {
+              RenderSetOptions bad = o;
+              bad.blend = 1.5;
+              render_set(bad, dir);
+            }).find("--blend 1.5"),
             std::string::npos);
 }
 

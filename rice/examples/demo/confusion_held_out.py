@@ -20,7 +20,8 @@ def table(path):
 
 
 rendered, classified = Path(sys.argv[1]), Path(sys.argv[2])
-names = json.loads((classified / "classify.json").read_text())["classes"]
+record = json.loads((classified / "classify.json").read_text())
+names = record["classes"]
 if names != ["low", "medium", "high"]:
     sys.exit(f"confusion_held_out.py: classes {names}; the demo trains low / medium / high")
 grade_of = {r["image"]: int(r["grade"]) for r in table(rendered / "truth.csv")}
@@ -40,11 +41,11 @@ ax.set_yticks(range(3), [f"{n}\n(grades {2 + 2 * k}-{3 + 2 * k})" for k, n in en
 ax.set_xlabel("predicted class")
 ax.set_ylabel("rendered grade")
 accuracy = np.trace(matrix) / max(matrix.sum(), 1)
-ax.set_title(f"held-out batch: {accuracy:.0%} of {matrix.sum()} ok grains\n"
+ax.set_title(f"held-out batch, {record['model_type']}: {accuracy:.0%} of {matrix.sum()} ok grains\n"
              f"({sum(r['status'] == 'flagged' for r in rows)} flagged grains not counted)", fontsize=9)
 fig.tight_layout()
 fig.savefig(classified / "confusion_held_out.png", dpi=120)
 for k, n in enumerate(names):
     print(f"[rice demo] held-out {n:6s}: {matrix[k, k]}/{matrix[k].sum()}")
-print(f"[rice demo] held-out accuracy {accuracy:.1%} of {matrix.sum()} ok grains; chart "
+print(f"[rice demo] held-out accuracy ({record['model_type']}) {accuracy:.1%} of {matrix.sum()} ok grains; chart "
       f"{classified / 'confusion_held_out.png'}")

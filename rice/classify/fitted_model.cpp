@@ -1,0 +1,23 @@
+#include "rice/classify/fitted_model.hpp"
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace suite::rice {
+
+void create_model_folder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec)
+    throw InputError(fmt::format("cannot create the model folder '{}': {}; choose a folder you can write", dir.string(),
+                                 ec.message()));
+}
+
+nlohmann::json classes_json(const AsvClasses& classes) {
+  nlohmann::json grades = nlohmann::json::array();
+  for (int c = 0; c < classes.count(); ++c) grades.push_back(classes.grades_of(c));
+  return {{"scheme", classes.scheme}, {"names", classes.names}, {"grades", grades}};
+}
+
+}  // namespace suite::rice
