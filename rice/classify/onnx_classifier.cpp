@@ -11,6 +11,7 @@
 #include <set>
 
 #include "core/errors.hpp"
+#include "rice/classify/onnx_graph.hpp"
 
 namespace suite::rice {
 namespace {
@@ -174,7 +175,8 @@ OnnxClassifier OnnxClassifier::load(const std::filesystem::path& argument) {
   // OpenCV logs an importer's failure on stderr besides throwing; the one line below says it all.
   const auto log_level = cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   try {
-    c.net_ = cv::dnn::readNetFromONNX(f.onnx.string());
+    const ImportableOnnx model = importable_onnx(f.onnx);
+    c.net_ = cv::dnn::readNetFromONNX(model.bytes.data(), model.bytes.size());
     cv::utils::logging::setLogLevel(log_level);
   } catch (const cv::Exception& e) {
     cv::utils::logging::setLogLevel(log_level);
