@@ -15,6 +15,8 @@
 #include "core/mpi/comm.hpp"
 #include "core/mpi/environment.hpp"
 #include "core/run/guarded_main.hpp"
+#include "core/run/shard.hpp"
+#include "rice/classify/classify_batch.hpp"
 #include "rice/classify/classify_images.hpp"
 #include "rice/classify/train_classifier.hpp"
 #include "rice/measure/measure_images.hpp"
@@ -118,7 +120,22 @@ suite::cli::ProgramSpec program_spec() {
                            Option::flag("crops",
                                         "with --onnx or a cnn model: also write DIR/crops/<image>_g<grain>.png, "
                                         "each grain as the network sees it before normalisation"),
-                           Option::number("pixel-size", "MM", "size of a pixel on the dish (required)")}},
+                           Option::number("pixel-size", "MM", "size of a pixel on the dish (required)"),
+                           Option::count("part-size", "N",
+                                         "photographs per part (default 50): each part is written to "
+                                         "DIR/parts/ when complete, and a rerun into DIR skips finished parts",
+                                         1),
+                           Option::text("shard", "K/N",
+                                        "Slurm array task K of N: the parts with index % N == K; the tables are "
+                                        "merged when every part is there (else `riceasv merge DIR`)")}},
+              CommandSpec{"merge",
+                          "write DIR's tables (classes.csv, results.csv, scores.csv, measure.json, classify.json, "
+                          "crops/) from the parts of a `riceasv classify --shard` batch once every part is done",
+                          "DIR",
+                          1,
+                          1,
+                          false,
+                          {}},
           }};
 }
 
@@ -222,10 +239,36 @@ int classify(const suite::cli::CommandArguments& c, suite::Logger& log) {
     throw suite::InputError(
         "riceasv classify: give either --model MODEL_DIR (a folder from `riceasv train`) or --onnx NET (a network "
         "of your own in ONNX, with NET.json beside it; docs/rice.md), not both and not neither");
-  const auto s = c.has("onnx")
-                     ? suite::rice::classify_images_onnx(targets, c.text_or("onnx", ""), m, out, c.has("crops"), log)
-                     : suite::rice::classify_images(targets, c.text_or("model", ""), m, out, c.has("crops"), log);
-  log.info("{} grains classified ({} flagged) from {} images; table {}", s.grains, s.flagged, s.images,
+  const bool onnx = c.has("onnx"), crops = c.has("crops");
+  const std::filesystem::path model = c.text_or(onnx ? "onnx" : "model", "");
+  const suite::rice::PartClassifier part = [&](const std::vector<std::filesystem::path>& images,
+                                               const std::filesystem::path& dir) {
+    return onnx ? suite::rice::classify_images_onnx(images, model, m, dir, crops, log)
+                : suite::rice::classify_images(images, model, m, dir, crops, log);
+  };
+  suite::rice::BatchOptions batch;
+  batch.part_size = static_cast<int>(c.count_or("part-size", batch.part_size));
+  if (c.has("shard")) batch.shard = suite::parse_shard(c.text_or("shard", ""));
+  const auto s = suite::rice::classify_batch(targets, part, batch, out, log);
+  if (s.merged) {
+    const auto all = suite::rice::merge_classified(out);
+    log.info("{} grains classified ({} flagged) from {} images in {} part(s), {} classified now; table {}", all.grains,
+             all.flagged, all.images, s.parts, s.done_now, (out / "classes.csv").string());
+  } else {
+    log.info("{} of {} part(s) classified now, {} found done; {} part(s) left to other tasks, then `riceasv merge {}`",
+             s.done_now, s.parts, s.done_before, s.missing.size(), out.string());
+  }
+  if (s.now.failed_images > 0)
+    throw suite::InputError(fmt::format("{} image(s) could not be classified, the others were (table {}); first: {}",
+                                        s.now.failed_images, (s.merged ? out / "classes.csv" : out / "parts").string(),
+                                        s.now.first_failure));
+  return 0;
+}
+
+int merge(const suite::cli::CommandArguments& c, suite::Logger& log) {
+  const std::filesystem::path out = c.targets.at(0);
+  const auto s = suite::rice::merge_classified(out);
+  log.info("{} grains ({} flagged) from {} images merged; table {}", s.grains, s.flagged, s.images,
            (out / "classes.csv").string());
   if (s.failed_images > 0)
     throw suite::InputError(fmt::format("{} image(s) could not be classified, the others were (table {}); first: {}",
@@ -252,6 +295,7 @@ int main(int argc, char** argv) {
     if (c.command == "measure") return measure(c, log);
     if (c.command == "train") return train(c, log);
     if (c.command == "classify") return classify(c, log);
+    if (c.command == "merge") return merge(c, log);
     throw std::logic_error("riceasv: command '" + c.command + "' has no handler");
   });
 }
