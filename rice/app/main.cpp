@@ -251,9 +251,8 @@ int classify(const suite::cli::CommandArguments& c, suite::Logger& log) {
   if (c.has("shard")) batch.shard = suite::parse_shard(c.text_or("shard", ""));
   const auto s = suite::rice::classify_batch(targets, part, batch, out, log);
   if (s.merged) {
-    const auto all = suite::rice::merge_classified(out);
-    log.info("{} grains classified ({} flagged) from {} images in {} part(s), {} classified now; table {}", all.grains,
-             all.flagged, all.images, s.parts, s.done_now, (out / "classes.csv").string());
+    log.info("{} grains classified ({} flagged) from {} images in {} part(s), {} classified now; table {}",
+             s.all.grains, s.all.flagged, s.all.images, s.parts, s.done_now, (out / "classes.csv").string());
   } else {
     log.info("{} of {} part(s) classified now, {} found done; {} part(s) left to other tasks, then `riceasv merge {}`",
              s.done_now, s.parts, s.done_before, s.missing.size(), out.string());

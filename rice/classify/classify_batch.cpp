@@ -150,6 +150,7 @@ BatchSummary classify_batch(const std::vector<fs::path>& targets, const PartClas
     partial += ".partial";
     fs::remove_all(partial, ec);  // what a killed run left
     const ClassifySummary c = classify_part(slice, partial);
+    fs::remove_all(part_dir(out, p), ec);  // an incomplete folder (no classify.json) is replaced
     fs::rename(partial, part_dir(out, p));
     ++s.done_now;
     s.now.images += c.images;
@@ -161,7 +162,7 @@ BatchSummary classify_batch(const std::vector<fs::path>& targets, const PartClas
              last, c.grains, c.flagged, c.failed_images);
   }
   if (s.missing.empty()) {
-    merge_classified(out);
+    s.all = merge_classified(out);
     s.merged = true;
   }
   return s;

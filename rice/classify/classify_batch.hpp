@@ -39,6 +39,7 @@ struct BatchSummary {
   std::vector<int> missing;  // parts neither found nor classified (other shards)
   ClassifySummary now;       // over the parts this run classified
   bool merged = false;       // DIR's tables written from every part
+  ClassifySummary all;       // merged: over the whole batch
 };
 
 BatchSummary classify_batch(const std::vector<std::filesystem::path>& targets, const PartClassifier& classify_part,
