@@ -19,6 +19,7 @@
 #include "rice/classify/classify_batch.hpp"
 #include "rice/classify/classify_images.hpp"
 #include "rice/classify/train_classifier.hpp"
+#include "rice/cnn/pretrained_net.hpp"
 #include "rice/measure/measure_images.hpp"
 #include "rice/render/render_set.hpp"
 
@@ -80,21 +81,28 @@ suite::cli::ProgramSpec program_spec() {
                            Option::number("pixel-size", "MM", "size of a pixel on the dish (required)"),
                            Option::text("classes", "three|grades",
                                         "three: low (2-3), medium (4-5), high (6-7), the default; grades: 2 ... 7"),
-                           Option::text("model-type", "rtrees|svm|cnn",
-                                        "random forest on the traits (default), RBF SVM on the traits, or a "
-                                        "convolutional network on a crop around each grain (libtorch)"),
+                           Option::text("model-type", "rtrees|svm|cnn|pretrained",
+                                        "random forest on the traits (default), RBF SVM on the traits, a "
+                                        "convolutional network on a crop around each grain (libtorch), or your "
+                                        "pretrained TorchScript network fine-tuned on the crops"),
+                           Option::text("pretrained", "NET",
+                                        "with --model-type pretrained: your TorchScript network to fine-tune, NET.pt "
+                                        "with NET.json beside it (the ONNX convention) or a folder of net.pt and "
+                                        "net.json"),
                            Option::count("trees", "N", "trees of the forest (default 100)", 1),
                            Option::count("epochs", "N",
-                                         "cnn: most passes over the training crops; the pass with the lowest "
-                                         "validation loss is kept (default 80)",
+                                         "cnn, pretrained: most passes over the training crops; the pass with the "
+                                         "lowest validation loss is kept (default 80; pretrained 30)",
                                          1),
-                           Option::count("batch", "N", "cnn: crops per training step (default 16)", 1),
+                           Option::count("batch", "N", "cnn, pretrained: crops per training step (default 16)", 1),
+                           Option::number("learning-rate", "R",
+                                          "cnn, pretrained: Adam's step size (default 0.003; pretrained 0.0003)"),
                            Option::count("cnn-width", "C", "cnn: channels of the first convolution (default 8)", 1),
                            Option::number("crop-mm", "MM", "cnn: side of the crop around each grain (default 14)"),
                            Option::count("cnn-input", "PX",
                                          "cnn: side of the network's input, the crop resized to it (default 48)", 8),
                            Option::count("threads", "N",
-                                         "cnn: libtorch threads (default 1; results are "
+                                         "cnn, pretrained: libtorch threads (default 1; results are "
                                          "reproducible for a given N)",
                                          1),
                            Option::count("folds", "K", "k-fold cross-validation (default 5; 0: none)", 0),
@@ -206,21 +214,33 @@ int train(const suite::cli::CommandArguments& c, suite::Logger& log) {
   o.validation_share = c.number("validation-share").value_or(o.validation_share);
   o.test_share = c.number("test-share").value_or(o.test_share);
   o.seed = static_cast<std::uint64_t>(c.count_or("seed", 1));
+  using suite::rice::ModelKind;
+  const bool pretrained = o.model.kind == ModelKind::pretrained;
+  if (pretrained) o.cnn = suite::rice::fine_tuning_options();
+  if (pretrained != c.has("pretrained"))
+    throw suite::InputError("riceasv train: --pretrained NET goes with --model-type pretrained (and it needs one)");
+  o.pretrained = c.text_or("pretrained", "");
   o.cnn.max_epochs = static_cast<int>(c.count_or("epochs", o.cnn.max_epochs));
   o.cnn.width = static_cast<int>(c.count_or("cnn-width", o.cnn.width));
   o.cnn.batch = static_cast<int>(c.count_or("batch", o.cnn.batch));
+  o.cnn.learning_rate = c.number("learning-rate").value_or(o.cnn.learning_rate);
+  if (!(o.cnn.learning_rate > 0) || o.cnn.learning_rate > 1)
+    throw suite::InputError(fmt::format("--learning-rate {}: give a step size in (0, 1]", o.cnn.learning_rate));
   o.cnn.crop_mm = c.number("crop-mm").value_or(o.cnn.crop_mm);
   o.cnn.input_px = static_cast<int>(c.count_or("cnn-input", o.cnn.input_px));
   o.cnn.threads = static_cast<int>(c.count_or("threads", o.cnn.threads));
   if (!(o.cnn.crop_mm > 0) || o.cnn.crop_mm > 100)
     throw suite::InputError(fmt::format("--crop-mm {}: give the crop's side in mm, in (0, 100]", o.cnn.crop_mm));
-  if (o.model.kind != suite::rice::ModelKind::cnn)
-    for (const char* key : {"epochs", "batch", "cnn-width", "crop-mm", "cnn-input", "threads"})
-      if (c.has(key))
-        throw suite::InputError(
-            fmt::format("riceasv train: --{} is an option of the network; add --model-type cnn "
-                        "or leave it out",
-                        key));
+  for (const char* key : {"epochs", "batch", "learning-rate", "threads"})
+    if (c.has(key) && o.model.kind != ModelKind::cnn && !pretrained)
+      throw suite::InputError(fmt::format(
+          "riceasv train: --{} is an option of the network; add --model-type cnn (or pretrained) or leave it out",
+          key));
+  for (const char* key : {"cnn-width", "crop-mm", "cnn-input"})
+    if (c.has(key) && o.model.kind != ModelKind::cnn)
+      throw suite::InputError(
+          fmt::format("riceasv train: --{} is an option of the suite's network; add --model-type cnn or leave it out{}",
+                      key, pretrained ? " (a pretrained network's crop and input come from its net.json)" : ""));
   const std::filesystem::path out = c.text_or("out", "");
   const auto s = suite::rice::train_classifier(c.targets.at(0), o, m, out, log);
   if (!s.problems.empty())

@@ -20,6 +20,7 @@
 #include "rice/classify/trait_classifier.hpp"
 #include "rice/classify/trait_features.hpp"
 #include "rice/cnn/grain_cnn.hpp"
+#include "rice/cnn/pretrained_net.hpp"
 #include "rice/measure/image_files.hpp"
 #include "rice/measure/measure_images.hpp"
 
@@ -204,6 +205,14 @@ ClassifySummary classify_crops(const std::vector<std::filesystem::path>& targets
 ClassifySummary classify_images(const std::vector<std::filesystem::path>& targets,
                                 const std::filesystem::path& model_dir, const MeasureOptions& measure,
                                 const std::filesystem::path& out, bool write_crops, Logger& log) {
+  if (PretrainedClassifier::is_pretrained_model(model_dir)) {
+    const PretrainedClassifier net = PretrainedClassifier::load(model_dir);
+    const CropNetwork crop_network{net.spec(),
+                                   [&net](const cv::Mat& crop) { return net.scores(crop); },
+                                   fmt::format("fine-tuned network '{}'", model_dir.string()),
+                                   {{"model", model_dir.string()}, {"model_type", "pretrained"}}};
+    return classify_crops(targets, crop_network, measure, out, write_crops, log);
+  }
   if (CnnClassifier::is_cnn_model(model_dir)) {
     const CnnClassifier net = CnnClassifier::load(model_dir);
     const CropNetwork crop_network{net.spec(),

@@ -20,4 +20,15 @@ nlohmann::json classes_json(const AsvClasses& classes) {
   return {{"scheme", classes.scheme}, {"names", classes.names}, {"grades", grades}};
 }
 
+std::vector<Prediction> most_probable(const cv::Mat& probabilities) {
+  std::vector<Prediction> out(static_cast<std::size_t>(probabilities.rows));
+  for (int i = 0; i < probabilities.rows; ++i) {
+    cv::Point best;
+    double top = 0;
+    cv::minMaxLoc(probabilities.row(i), nullptr, &top, nullptr, &best);
+    out[static_cast<std::size_t>(i)] = {best.x, top};
+  }
+  return out;
+}
+
 }  // namespace suite::rice

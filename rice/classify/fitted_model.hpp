@@ -17,6 +17,8 @@
 
 namespace suite::rice {
 
+struct OnnxSpec;  // onnx_classifier.hpp
+
 struct Prediction {
   int label = -1;     // class index
   double share = -1;  // the model's confidence in it, in (0, 1]: the forest's vote share, the network's
@@ -39,6 +41,10 @@ class FittedModel {
 void create_model_folder(const std::filesystem::path& dir);
 nlohmann::json classes_json(const AsvClasses& classes);
 
+// Each row's most probable class and its probability, from a CV_64F table of one row per grain and
+// one column per class (a network's softmax).
+std::vector<Prediction> most_probable(const cv::Mat& probabilities);
+
 class Learner {
  public:
   virtual ~Learner() = default;
@@ -51,6 +57,9 @@ class Learner {
   virtual nlohmann::json select(const cv::Mat& train, const std::vector<int>& train_labels, const cv::Mat& validation,
                                 const std::vector<int>& validation_labels,
                                 std::vector<Prediction>& validation_predicted) = 0;
+  // The crop its rows are (onnx_classifier.hpp's rule), for a learner of crops; nullptr for one of
+  // trait features.
+  virtual const OnnxSpec* crop_spec() const { return nullptr; }
 };
 
 }  // namespace suite::rice

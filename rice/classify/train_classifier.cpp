@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <opencv2/imgcodecs.hpp>
 
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
@@ -68,7 +69,11 @@ cv::Mat crops_of(const std::vector<Sample>& samples, const OnnxSpec& spec, doubl
   cv::Mat image;
   for (const auto& s : samples) {
     if (s.used < 0) continue;
-    if (s.row->image != open) image = read_grey(open = s.row->image);
+    if (s.row->image != open) {
+      open = s.row->image;
+      image = spec.channels == 1 ? read_grey(open) : cv::imread(open, cv::IMREAD_COLOR);
+      if (image.empty()) throw InputError(fmt::format("cannot read image '{}' in colour for the network", open));
+    }
     const auto& g = s.row->traits;
     crops.push_back(crop_for_network(spec, image, g.x_px, g.y_px, mm_per_px, s.row->levels.dish).reshape(1, 1));
   }
@@ -87,6 +92,9 @@ TrainSummary train_classifier(const std::filesystem::path& labels, const TrainOp
   if (set.images.empty())
     throw InputError(fmt::format("labels '{}': no labelled images to train on ({})", labels.string(),
                                  set.problems.empty() ? "none listed" : set.problems.front()));
+
+  // The learner first: a pretrained network that cannot be used stops before any photograph is read.
+  const auto learner = make_learner(options);
 
   // Measure every labelled image, as `riceasv measure` does.
   std::vector<std::filesystem::path> paths;
@@ -133,15 +141,15 @@ TrainSummary train_classifier(const std::filesystem::path& labels, const TrainOp
   if (summary.grains_excluded > 0)
     log.info("{} flagged grain(s) not trained on (touching or cut by the frame)", summary.grains_excluded);
 
-  // The network learns from each ok grain's crop, the others from its features.
+  // A network learns from each ok grain's crop, the others from its features.
   double crop_seconds = 0;
   cv::Mat samples_matrix = features;
-  if (options.model.kind == ModelKind::cnn) {
+  if (const OnnxSpec* crop = learner->crop_spec()) {
     const auto crop_start = std::chrono::steady_clock::now();
-    samples_matrix = crops_of(samples, cnn_crop_spec(options.cnn), measure.mm_per_px);
+    samples_matrix = crops_of(samples, *crop, measure.mm_per_px);
     crop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - crop_start).count();
   }
-  const Evaluation e = train_and_evaluate(samples_matrix, used_labels, options, *make_learner(options));
+  const Evaluation e = train_and_evaluate(samples_matrix, used_labels, options, *learner);
   summary.test_accuracy = e.test.accuracy();
   summary.cv_accuracy = e.cross_validation.accuracy();
 

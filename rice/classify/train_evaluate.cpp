@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "rice/cnn/pretrained_net.hpp"
 
 namespace suite::rice {
 namespace {
@@ -103,10 +104,16 @@ Evaluation train_and_evaluate(const cv::Mat& samples, const std::vector<int>& la
 }
 
 std::unique_ptr<Learner> make_learner(const TrainOptions& options) {
-  if (options.model.kind == ModelKind::cnn) {
-    CnnOptions cnn = options.cnn;
-    cnn.seed = options.seed;
-    return std::make_unique<CnnLearner>(options.classes, cnn);
+  CnnOptions cnn = options.cnn;
+  cnn.seed = options.seed;
+  if (options.model.kind == ModelKind::cnn) return std::make_unique<CnnLearner>(options.classes, cnn);
+  if (options.model.kind == ModelKind::pretrained) {
+    if (options.pretrained.empty())
+      throw InputError(
+          "--model-type pretrained needs --pretrained NET (your TorchScript network, net.pt with "
+          "net.json beside it; docs/rice.md)");
+    return std::make_unique<PretrainedLearner>(
+        PretrainedClassifier::load_pretrained(options.pretrained, options.classes), cnn);
   }
   ModelOptions model = options.model;
   model.seed = options.seed;
@@ -114,8 +121,8 @@ std::unique_ptr<Learner> make_learner(const TrainOptions& options) {
 }
 
 Evaluation train_and_evaluate(const cv::Mat& features, const std::vector<int>& labels, const TrainOptions& options) {
-  if (options.model.kind == ModelKind::cnn)
-    throw std::logic_error("train_and_evaluate: a cnn learns from crops; give its learner (make_learner)");
+  if (options.model.kind != ModelKind::rtrees && options.model.kind != ModelKind::svm)
+    throw std::logic_error("train_and_evaluate: a network learns from crops; give its learner (make_learner)");
   return train_and_evaluate(features, labels, options, *make_learner(options));
 }
 

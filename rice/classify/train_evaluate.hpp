@@ -13,6 +13,7 @@
 //      the pooled confusion matrix (every grain predicted once, by the model that did not see it).
 // Not collective.
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -28,8 +29,9 @@ namespace suite::rice {
 
 struct TrainOptions {
   AsvClasses classes = AsvClasses::three();
-  ModelOptions model;  // the kind; rtrees and svm: their parameters
-  CnnOptions cnn;      // model.kind cnn: the network's
+  ModelOptions model;                // the kind; rtrees and svm: their parameters
+  CnnOptions cnn;                    // model.kind cnn or pretrained: the network's training
+  std::filesystem::path pretrained;  // model.kind pretrained: NET.pt (with NET.json) or a folder of both
   double validation_share = 0.125;
   double test_share = 0.125;
   int folds = 5;           // 0: no cross-validation
@@ -56,7 +58,9 @@ Evaluation train_and_evaluate(const cv::Mat& samples, const std::vector<int>& la
                               Learner& learner);
 
 // The learner `options` ask for, seeded with options.seed: a TraitLearner of options.model (its rows
-// are trait features) or, for model.kind cnn, a CnnLearner of options.cnn (its rows are crops).
+// are trait features), or for model.kind cnn a CnnLearner of options.cnn, for pretrained a
+// PretrainedLearner of options.pretrained fine-tuned with options.cnn (their rows are crops, by the
+// learner's crop_spec()). InputError for a pretrained network that cannot be used.
 std::unique_ptr<Learner> make_learner(const TrainOptions& options);
 
 // The trait classifier of `options.model` (rtrees or svm) on `features` (CV_32F, one row per grain).

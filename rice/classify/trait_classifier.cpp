@@ -62,6 +62,8 @@ std::string to_string(ModelKind kind) {
       return "svm";
     case ModelKind::cnn:
       return "cnn";
+    case ModelKind::pretrained:
+      return "pretrained";
   }
   return "unknown";
 }
@@ -70,9 +72,11 @@ ModelKind parse_model_kind(const std::string& text) {
   if (text == "rtrees") return ModelKind::rtrees;
   if (text == "svm") return ModelKind::svm;
   if (text == "cnn") return ModelKind::cnn;
+  if (text == "pretrained") return ModelKind::pretrained;
   throw InputError(
-      fmt::format("--model-type '{}': give 'rtrees' (a random forest), 'svm' (RBF support vectors) or 'cnn' (a "
-                  "convolutional network on a crop around each grain)",
+      fmt::format("--model-type '{}': give 'rtrees' (a random forest), 'svm' (RBF support vectors), 'cnn' (a "
+                  "convolutional network on a crop around each grain) or 'pretrained' (your TorchScript network, "
+                  "fine-tuned; with --pretrained)",
                   text));
 }
 
@@ -81,7 +85,8 @@ TraitClassifier TraitClassifier::fit(const cv::Mat& features, const std::vector<
   const int n_features = static_cast<int>(feature_names().size());
   if (features.type() != CV_32F || features.cols != n_features || features.rows != static_cast<int>(labels.size()))
     throw std::logic_error("TraitClassifier::fit: features must be CV_32F, one row per label, one column per feature");
-  if (options.kind == ModelKind::cnn) throw std::logic_error("TraitClassifier::fit: a cnn is not a trait classifier");
+  if (options.kind != ModelKind::rtrees && options.kind != ModelKind::svm)
+    throw std::logic_error("TraitClassifier::fit: a network is not a trait classifier");
   const std::set<int> present(labels.begin(), labels.end());
   if (present.size() < 2)
     throw InputError(

@@ -24,10 +24,11 @@
 
 namespace suite::rice {
 
-// rtrees and svm are this file's; cnn is the convolutional network on crops (rice/cnn/).
-enum class ModelKind { rtrees, svm, cnn };
+// rtrees and svm are this file's; cnn (the suite's network) and pretrained (a lab's TorchScript
+// network, fine-tuned) learn from crops (rice/cnn/).
+enum class ModelKind { rtrees, svm, cnn, pretrained };
 std::string to_string(ModelKind kind);
-// "rtrees", "svm" or "cnn"; InputError naming --model-type otherwise.
+// "rtrees", "svm", "cnn" or "pretrained"; InputError naming --model-type otherwise.
 ModelKind parse_model_kind(const std::string& text);
 
 struct ModelOptions {

@@ -1,4 +1,4 @@
-// The only file of the suite that includes libtorch (its headers take half a minute to compile).
+// libtorch is included only in rice/cnn/ (its headers take half a minute to compile per file).
 #include "rice/cnn/grain_cnn.hpp"
 
 #include <fmt/format.h>
@@ -8,12 +8,11 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <set>
-#include <thread>
 
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "rice/cnn/torch_training.hpp"
 
 namespace suite::rice {
 
@@ -51,39 +50,6 @@ struct CnnClassifier::Network : torch::nn::Module {
   }
 };
 
-namespace {
-
-// libtorch's thread count for this process: the option, else the cores it may run on.
-void use_threads(int threads) {
-  const int n = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  if (torch::get_num_threads() != n) torch::set_num_threads(n);
-}
-
-// Rows of CV_8U crops as an N x 1 x side x side float tensor of (pixel / 255 - mean) / std.
-torch::Tensor to_tensor(const cv::Mat& crops, int side, double mean, double std) {
-  if (crops.rows > 0 && (crops.type() != CV_8UC1 || crops.cols != side * side || !crops.isContinuous()))
-    throw std::logic_error(
-        fmt::format("CnnClassifier: crops must be continuous CV_8UC1 rows of {} x {} pixels", side, side));
-  cv::Mat scaled;
-  crops.convertTo(scaled, CV_32F, 1.0 / (255.0 * std), -mean / std);
-  return torch::from_blob(scaled.data, {crops.rows, 1, side, side}, torch::kFloat32).clone();
-}
-
-// One of the eight turns and mirror images of each crop in `batch` (N x 1 x H x W), drawn from `rng`.
-torch::Tensor turned(const torch::Tensor& batch, std::mt19937_64& rng) {
-  std::vector<torch::Tensor> out;
-  out.reserve(static_cast<std::size_t>(batch.size(0)));
-  for (int64_t i = 0; i < batch.size(0); ++i) {
-    const auto k = static_cast<int64_t>(rng() % 8);
-    torch::Tensor x = torch::rot90(batch[i], k % 4, {1, 2});
-    if (k >= 4) x = torch::flip(x, {2});
-    out.push_back(x);
-  }
-  return torch::stack(out);
-}
-
-}  // namespace
-
 OnnxSpec cnn_crop_spec(const CnnOptions& options) {
   OnnxSpec spec;
   spec.width = spec.height = options.input_px;
@@ -102,7 +68,7 @@ CnnClassifier CnnClassifier::fit(const cv::Mat& crops, const std::vector<int>& l
     throw InputError(
         fmt::format("cannot train a network on {} grain(s) of {} class: it needs grains of at least two classes",
                     labels.size(), present.size()));
-  use_threads(options.threads);
+  cnn::use_threads(options.threads);
   torch::manual_seed(options.seed);
   CnnClassifier c;
   c.classes_ = classes;
@@ -114,60 +80,27 @@ CnnClassifier CnnClassifier::fit(const cv::Mat& crops, const std::vector<int>& l
   c.network_ = std::make_shared<Network>(options.width, classes.count());
   Network& net = *c.network_;
 
-  const torch::Tensor x = to_tensor(crops, options.input_px, c.mean_, c.std_);
+  const torch::Tensor x = cnn::to_tensor(crops, options.input_px, options.input_px, 1, {c.mean_}, {c.std_});
   const torch::Tensor y = torch::tensor(std::vector<int64_t>(labels.begin(), labels.end()), torch::kInt64);
-  torch::optim::Adam optimiser(net.parameters(),
-                               torch::optim::AdamOptions(options.learning_rate).weight_decay(options.weight_decay));
-  std::mt19937_64 rng(options.seed);
-  std::vector<int64_t> order(static_cast<std::size_t>(crops.rows));
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int64_t>(i);
-  for (int epoch = 1; epoch <= options.epochs; ++epoch) {
-    net.train();
-    for (std::size_t i = order.size(); i > 1; --i)  // Fisher-Yates, the same with every standard library
-      std::swap(order[i - 1], order[static_cast<std::size_t>(rng() % i)]);
-    for (std::size_t start = 0; start < order.size(); start += static_cast<std::size_t>(options.batch)) {
-      const std::size_t end = std::min(order.size(), start + static_cast<std::size_t>(options.batch));
-      if (end - start < 2 && start > 0) break;  // batch normalisation needs two crops; one left over sits out
-      const torch::Tensor index = torch::tensor(std::vector<int64_t>(order.begin() + static_cast<std::ptrdiff_t>(start),
-                                                                     order.begin() + static_cast<std::ptrdiff_t>(end)),
-                                                torch::kInt64);
-      torch::Tensor batch = x.index_select(0, index);
-      if (options.augment) batch = turned(batch, rng);
-      optimiser.zero_grad();
-      const torch::Tensor loss = torch::nn::functional::cross_entropy(net.forward(batch), y.index_select(0, index));
-      loss.backward();
-      optimiser.step();
-    }
-    if (after_epoch) after_epoch(epoch, c);
-  }
-  net.eval();
+  cnn::train_epochs([&net](const torch::Tensor& batch) { return net.forward(batch); }, net.parameters(),
+                    [&net](bool on) { net.train(on); }, x, y, options,
+                    [&](int epoch) {
+                      if (after_epoch) after_epoch(epoch, c);
+                    });
   return c;
 }
 
 cv::Mat CnnClassifier::probabilities(const cv::Mat& crops) const {
-  cv::Mat out(crops.rows, classes_.count(), CV_64F);
-  if (crops.rows == 0) return out;
-  use_threads(options_.threads);
+  if (crops.rows == 0) return cv::Mat(0, classes_.count(), CV_64F);
+  cnn::use_threads(options_.threads);
   torch::NoGradGuard no_grad;
   network_->eval();
-  const torch::Tensor logits = network_->forward(to_tensor(crops, options_.input_px, mean_, std_));
-  const torch::Tensor p = torch::softmax(logits.to(torch::kFloat64), 1);
-  const auto a = p.accessor<double, 2>();
-  for (int i = 0; i < crops.rows; ++i)
-    for (int k = 0; k < classes_.count(); ++k) out.at<double>(i, k) = a[i][k];
-  return out;
+  return cnn::probabilities_of(
+      network_->forward(cnn::to_tensor(crops, options_.input_px, options_.input_px, 1, {mean_}, {std_})));
 }
 
 std::vector<Prediction> CnnClassifier::predict(const cv::Mat& crops) const {
-  const cv::Mat p = probabilities(crops);
-  std::vector<Prediction> out(static_cast<std::size_t>(crops.rows));
-  for (int i = 0; i < p.rows; ++i) {
-    cv::Point best;
-    double top = 0;
-    cv::minMaxLoc(p.row(i), nullptr, &top, nullptr, &best);
-    out[static_cast<std::size_t>(i)] = {best.x, top};
-  }
-  return out;
+  return most_probable(probabilities(crops));
 }
 
 std::vector<double> CnnClassifier::scores(const cv::Mat& crop) const {
@@ -310,47 +243,45 @@ std::unique_ptr<FittedModel> CnnLearner::fit(const cv::Mat& crops, const std::ve
   return std::make_unique<CnnClassifier>(CnnClassifier::fit(crops, labels, classes_, options_));
 }
 
+void EpochSelection::after_pass(int pass, const cv::Mat& p) {
+  double loss = 0;
+  int right = 0;
+  std::vector<Prediction> predicted = most_probable(p);
+  for (int i = 0; i < p.rows; ++i) {
+    const int truth = labels_[static_cast<std::size_t>(i)];
+    loss -= std::log(std::max(p.at<double>(i, truth), 1e-12));
+    right += predicted[static_cast<std::size_t>(i)].label == truth;
+  }
+  loss /= p.rows;
+  loss_.push_back(loss);
+  accuracy_.push_back(static_cast<double>(right) / p.rows);
+  if (best_pass_ == 0 || loss < best_loss_) best_loss_ = loss, best_pass_ = pass, predicted_ = std::move(predicted);
+}
+
+nlohmann::json EpochSelection::record(int max_epochs) const {
+  if (labels_.empty())
+    return {
+        {"by", "none: no validation grains, max_epochs passes"}, {"max_epochs", max_epochs}, {"epochs", max_epochs}};
+  return {{"by", "the pass with the lowest cross-entropy on the validation grains"},
+          {"max_epochs", max_epochs},
+          {"epochs", best_pass_},
+          {"validation_loss", loss_},
+          {"validation_accuracy", accuracy_}};
+}
+
 nlohmann::json CnnLearner::select(const cv::Mat& train, const std::vector<int>& train_labels, const cv::Mat& validation,
                                   const std::vector<int>& validation_labels,
                                   std::vector<Prediction>& validation_predicted) {
-  validation_predicted.clear();
-  nlohmann::json selection = {{"by", "the pass with the lowest cross-entropy on the validation grains"},
-                              {"max_epochs", options_.max_epochs}};
-  if (validation.rows == 0) {
-    options_.epochs = options_.max_epochs;
-    selection["by"] = "none: no validation grains, max_epochs passes";
-    selection["epochs"] = options_.epochs;
-    return selection;
+  EpochSelection selection(validation.rows > 0 ? validation_labels : std::vector<int>{});
+  options_.epochs = options_.max_epochs;
+  if (validation.rows > 0) {
+    CnnClassifier::fit(train, train_labels, classes_, options_, [&](int pass, const CnnClassifier& model) {
+      selection.after_pass(pass, model.probabilities(validation));
+    });
+    options_.epochs = selection.best_pass();
   }
-  CnnOptions trial = options_;
-  trial.epochs = options_.max_epochs;
-  double best_loss = std::numeric_limits<double>::infinity();
-  int best_epoch = trial.epochs;
-  nlohmann::json loss_curve = nlohmann::json::array(), accuracy_curve = nlohmann::json::array();
-  CnnClassifier::fit(train, train_labels, classes_, trial, [&](int epoch, const CnnClassifier& model) {
-    const cv::Mat p = model.probabilities(validation);
-    double loss = 0;
-    int right = 0;
-    std::vector<Prediction> predicted(static_cast<std::size_t>(p.rows));
-    for (int i = 0; i < p.rows; ++i) {
-      const int truth = validation_labels[static_cast<std::size_t>(i)];
-      loss -= std::log(std::max(p.at<double>(i, truth), 1e-12));
-      cv::Point best;
-      double top = 0;
-      cv::minMaxLoc(p.row(i), nullptr, &top, nullptr, &best);
-      predicted[static_cast<std::size_t>(i)] = {best.x, top};
-      right += best.x == truth;
-    }
-    loss /= p.rows;
-    loss_curve.push_back(loss);
-    accuracy_curve.push_back(static_cast<double>(right) / p.rows);
-    if (loss < best_loss) best_loss = loss, best_epoch = epoch, validation_predicted = predicted;
-  });
-  options_.epochs = best_epoch;
-  selection["epochs"] = best_epoch;
-  selection["validation_loss"] = loss_curve;
-  selection["validation_accuracy"] = accuracy_curve;
-  return selection;
+  validation_predicted = selection.predicted();
+  return selection.record(options_.max_epochs);
 }
 
 }  // namespace suite::rice

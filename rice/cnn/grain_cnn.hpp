@@ -14,7 +14,7 @@
 // one of the eight rotations by 90 degrees and mirror images (a grain's orientation carries no
 // grade). Weights start from libtorch's seeded initialisation: no ImageNet weights can be downloaded
 // here, which costs little for these small grey crops but would cost accuracy on real photographs of
-// few grains; a network pretrained elsewhere runs through `classify --onnx`.
+// few grains; pretrained weights are fine-tuned by pretrained_net.hpp or run through `classify --onnx`.
 // Bit for bit reproducible for a given seed and thread count (libtorch's sums depend on the threads).
 // On disk: MODEL_DIR/model.pt (libtorch's archive of the weights) and MODEL_DIR/model.json (the format,
 // the classes, the architecture, the crop and the normalisation). Not collective.
@@ -92,21 +92,44 @@ class CnnClassifier : public FittedModel {
   std::shared_ptr<Network> network_;  // shared by copies; fixed once fitted
 };
 
+// Step 2 for a network (Learner::select): fed the validation grains' probabilities after each pass,
+// keeps the pass with the lowest cross-entropy on them (ties: the earlier) and its predictions.
+class EpochSelection {
+ public:
+  explicit EpochSelection(std::vector<int> validation_labels) : labels_(std::move(validation_labels)) {}
+  void after_pass(int pass, const cv::Mat& probabilities);
+  int best_pass() const { return best_pass_; }
+  const std::vector<Prediction>& predicted() const { return predicted_; }
+  // {"by", "max_epochs", "epochs", "validation_loss", "validation_accuracy"} for evaluation.json;
+  // without validation grains (`labels` empty) {"by": "none...", "epochs": max_epochs}.
+  nlohmann::json record(int max_epochs) const;
+
+ private:
+  std::vector<int> labels_;
+  double best_loss_ = 0;
+  int best_pass_ = 0;
+  std::vector<Prediction> predicted_;
+  std::vector<double> loss_, accuracy_;
+};
+
 // Fits networks of one set of options; select() trains on the training crops for max_epochs passes
 // and keeps the pass with the lowest cross-entropy on the validation crops (ties: the earlier), which
 // later fits then run.
 class CnnLearner : public Learner {
  public:
-  CnnLearner(AsvClasses classes, CnnOptions options) : classes_(std::move(classes)), options_(options) {}
+  CnnLearner(AsvClasses classes, CnnOptions options)
+      : classes_(std::move(classes)), options_(options), crop_(cnn_crop_spec(options)) {}
   std::unique_ptr<FittedModel> fit(const cv::Mat& crops, const std::vector<int>& labels) const override;
   nlohmann::json select(const cv::Mat& train, const std::vector<int>& train_labels, const cv::Mat& validation,
                         const std::vector<int>& validation_labels,
                         std::vector<Prediction>& validation_predicted) override;
   const CnnOptions& options() const { return options_; }
+  const OnnxSpec* crop_spec() const override { return &crop_; }
 
  private:
   AsvClasses classes_;
   CnnOptions options_;
+  OnnxSpec crop_;
 };
 
 }  // namespace suite::rice
