@@ -9,7 +9,6 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
 
@@ -140,9 +139,7 @@ ClassifySummary classify_crops(const std::vector<std::filesystem::path>& targets
     std::vector<Prediction> here;
     std::string lines;
     try {
-      cv::Mat image = spec.channels == 1 ? read_grey(name) : cv::imread(name, cv::IMREAD_COLOR);
-      if (image.empty())
-        throw InputError(fmt::format("cannot read image '{}' in colour for the network; save it as PNG or JPEG", name));
+      const cv::Mat image = read_for_network(name, spec.channels);
       for (std::size_t k = i; k < j; ++k) {
         const ResultRow& r = measured[k];
         cv::Rect region;
@@ -205,22 +202,17 @@ ClassifySummary classify_crops(const std::vector<std::filesystem::path>& targets
 ClassifySummary classify_images(const std::vector<std::filesystem::path>& targets,
                                 const std::filesystem::path& model_dir, const MeasureOptions& measure,
                                 const std::filesystem::path& out, bool write_crops, Logger& log) {
-  if (PretrainedClassifier::is_pretrained_model(model_dir)) {
-    const PretrainedClassifier net = PretrainedClassifier::load(model_dir);
+  // A network (the suite's or a fine-tuned one) runs on crops, as an ONNX network does.
+  const auto run_network = [&](const auto& net, const char* what, const char* type) {
     const CropNetwork crop_network{net.spec(),
                                    [&net](const cv::Mat& crop) { return net.scores(crop); },
-                                   fmt::format("fine-tuned network '{}'", model_dir.string()),
-                                   {{"model", model_dir.string()}, {"model_type", "pretrained"}}};
+                                   fmt::format("{} '{}'", what, model_dir.string()),
+                                   {{"model", model_dir.string()}, {"model_type", type}}};
     return classify_crops(targets, crop_network, measure, out, write_crops, log);
-  }
-  if (CnnClassifier::is_cnn_model(model_dir)) {
-    const CnnClassifier net = CnnClassifier::load(model_dir);
-    const CropNetwork crop_network{net.spec(),
-                                   [&net](const cv::Mat& crop) { return net.scores(crop); },
-                                   fmt::format("network '{}'", model_dir.string()),
-                                   {{"model", model_dir.string()}, {"model_type", "cnn"}}};
-    return classify_crops(targets, crop_network, measure, out, write_crops, log);
-  }
+  };
+  if (PretrainedClassifier::is_pretrained_model(model_dir))
+    return run_network(PretrainedClassifier::load(model_dir), "fine-tuned network", "pretrained");
+  if (CnnClassifier::is_cnn_model(model_dir)) return run_network(CnnClassifier::load(model_dir), "network", "cnn");
   if (write_crops)
     throw InputError(
         fmt::format("--crops: the model in '{}' classifies traits, not crops; leave --crops out, or give a network",

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <fstream>
+
 #include "core/errors.hpp"
 
 namespace suite::rice {
@@ -18,6 +20,13 @@ nlohmann::json classes_json(const AsvClasses& classes) {
   nlohmann::json grades = nlohmann::json::array();
   for (int c = 0; c < classes.count(); ++c) grades.push_back(classes.grades_of(c));
   return {{"scheme", classes.scheme}, {"names", classes.names}, {"grades", grades}};
+}
+
+std::string model_format(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "model.json");
+  if (!in) return "";
+  const auto j = nlohmann::json::parse(in, nullptr, false);
+  return j.is_object() ? j.value("format", "") : "";
 }
 
 std::vector<Prediction> most_probable(const cv::Mat& probabilities) {

@@ -40,6 +40,9 @@ class FittedModel {
 // model.json's "classes" entry: {"scheme", "names", "grades"}.
 void create_model_folder(const std::filesystem::path& dir);
 nlohmann::json classes_json(const AsvClasses& classes);
+// DIR/model.json's "format" ("riceasv cnn classifier", ...), or "" when the file is missing or not
+// a JSON object.
+std::string model_format(const std::filesystem::path& dir);
 
 // Each row's most probable class and its probability, from a CV_64F table of one row per grain and
 // one column per class (a network's softmax).

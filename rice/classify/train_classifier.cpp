@@ -6,7 +6,6 @@
 #include <cmath>
 #include <map>
 #include <numeric>
-#include <opencv2/imgcodecs.hpp>
 
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
@@ -69,11 +68,7 @@ cv::Mat crops_of(const std::vector<Sample>& samples, const OnnxSpec& spec, doubl
   cv::Mat image;
   for (const auto& s : samples) {
     if (s.used < 0) continue;
-    if (s.row->image != open) {
-      open = s.row->image;
-      image = spec.channels == 1 ? read_grey(open) : cv::imread(open, cv::IMREAD_COLOR);
-      if (image.empty()) throw InputError(fmt::format("cannot read image '{}' in colour for the network", open));
-    }
+    if (s.row->image != open) image = read_for_network(open = s.row->image, spec.channels);
     const auto& g = s.row->traits;
     crops.push_back(crop_for_network(spec, image, g.x_px, g.y_px, mm_per_px, s.row->levels.dish).reshape(1, 1));
   }

@@ -81,9 +81,8 @@ CnnClassifier CnnClassifier::fit(const cv::Mat& crops, const std::vector<int>& l
   Network& net = *c.network_;
 
   const torch::Tensor x = cnn::to_tensor(crops, options.input_px, options.input_px, 1, {c.mean_}, {c.std_});
-  const torch::Tensor y = torch::tensor(std::vector<int64_t>(labels.begin(), labels.end()), torch::kInt64);
   cnn::train_epochs([&net](const torch::Tensor& batch) { return net.forward(batch); }, net.parameters(),
-                    [&net](bool on) { net.train(on); }, x, y, options,
+                    [&net](bool on) { net.train(on); }, x, labels, options,
                     [&](int epoch) {
                       if (after_epoch) after_epoch(epoch, c);
                     });
@@ -162,10 +161,7 @@ void CnnClassifier::save(const std::filesystem::path& dir, const nlohmann::json&
 }
 
 bool CnnClassifier::is_cnn_model(const std::filesystem::path& dir) {
-  std::ifstream in(dir / "model.json");
-  if (!in) return false;
-  const auto j = nlohmann::json::parse(in, nullptr, false);
-  return j.is_object() && j.value("format", "") == kFormat;
+  return model_format(dir) == kFormat;
 }
 
 CnnClassifier CnnClassifier::load(const std::filesystem::path& dir) {
@@ -269,19 +265,28 @@ nlohmann::json EpochSelection::record(int max_epochs) const {
           {"validation_accuracy", accuracy_}};
 }
 
+nlohmann::json select_passes(CnnOptions& options, const cv::Mat& validation, const std::vector<int>& validation_labels,
+                             std::vector<Prediction>& validation_predicted,
+                             const std::function<void(const CnnOptions&, const PassReport&)>& train) {
+  EpochSelection selection(validation.rows > 0 ? validation_labels : std::vector<int>{});
+  options.epochs = options.max_epochs;
+  if (validation.rows > 0) {
+    train(options, [&](int pass, const cv::Mat& probabilities) { selection.after_pass(pass, probabilities); });
+    options.epochs = selection.best_pass();
+  }
+  validation_predicted = selection.predicted();
+  return selection.record(options.max_epochs);
+}
+
 nlohmann::json CnnLearner::select(const cv::Mat& train, const std::vector<int>& train_labels, const cv::Mat& validation,
                                   const std::vector<int>& validation_labels,
                                   std::vector<Prediction>& validation_predicted) {
-  EpochSelection selection(validation.rows > 0 ? validation_labels : std::vector<int>{});
-  options_.epochs = options_.max_epochs;
-  if (validation.rows > 0) {
-    CnnClassifier::fit(train, train_labels, classes_, options_, [&](int pass, const CnnClassifier& model) {
-      selection.after_pass(pass, model.probabilities(validation));
-    });
-    options_.epochs = selection.best_pass();
-  }
-  validation_predicted = selection.predicted();
-  return selection.record(options_.max_epochs);
+  return select_passes(options_, validation, validation_labels, validation_predicted,
+                       [&](const CnnOptions& o, const PassReport& report) {
+                         CnnClassifier::fit(train, train_labels, classes_, o, [&](int pass, const CnnClassifier& m) {
+                           report(pass, m.probabilities(validation));
+                         });
+                       });
 }
 
 }  // namespace suite::rice

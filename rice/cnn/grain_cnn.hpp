@@ -112,6 +112,15 @@ class EpochSelection {
   std::vector<double> loss_, accuracy_;
 };
 
+// Learner::select for a network: with validation grains, `train(options, report)` trains a network
+// for options.max_epochs passes and calls report(pass, its probabilities on `validation`) after each;
+// options.epochs becomes the pass EpochSelection keeps (max_epochs without validation grains).
+// Returns EpochSelection's record; `validation_predicted` gets the kept pass's predictions.
+using PassReport = std::function<void(int, const cv::Mat&)>;
+nlohmann::json select_passes(CnnOptions& options, const cv::Mat& validation, const std::vector<int>& validation_labels,
+                             std::vector<Prediction>& validation_predicted,
+                             const std::function<void(const CnnOptions&, const PassReport&)>& train);
+
 // Fits networks of one set of options; select() trains on the training crops for max_epochs passes
 // and keeps the pass with the lowest cross-entropy on the validation crops (ties: the earlier), which
 // later fits then run.

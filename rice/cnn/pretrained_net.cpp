@@ -124,9 +124,8 @@ PretrainedClassifier PretrainedClassifier::fine_tuned(
     parameters.push_back(p);
   }
   const torch::Tensor x = cnn::to_tensor(crops, spec_.width, spec_.height, spec_.channels, spec_.mean, spec_.std);
-  const torch::Tensor y = torch::tensor(std::vector<int64_t>(labels.begin(), labels.end()), torch::kInt64);
   cnn::train_epochs([&m](const torch::Tensor& batch) { return forward(m, batch); }, parameters,
-                    [&m](bool on) { m.train(on); }, x, y, options,
+                    [&m](bool on) { m.train(on); }, x, labels, options,
                     [&](int epoch) {
                       if (after_epoch) after_epoch(epoch, c);
                     });
@@ -191,10 +190,7 @@ void PretrainedClassifier::save(const std::filesystem::path& dir, const nlohmann
 }
 
 bool PretrainedClassifier::is_pretrained_model(const std::filesystem::path& dir) {
-  std::ifstream in(dir / "model.json");
-  if (!in) return false;
-  const auto j = nlohmann::json::parse(in, nullptr, false);
-  return j.is_object() && j.value("format", "") == kFormat;
+  return model_format(dir) == kFormat;
 }
 
 PretrainedClassifier PretrainedClassifier::load(const std::filesystem::path& dir) {
@@ -228,16 +224,12 @@ std::unique_ptr<FittedModel> PretrainedLearner::fit(const cv::Mat& crops, const 
 nlohmann::json PretrainedLearner::select(const cv::Mat& train, const std::vector<int>& train_labels,
                                          const cv::Mat& validation, const std::vector<int>& validation_labels,
                                          std::vector<Prediction>& validation_predicted) {
-  EpochSelection selection(validation.rows > 0 ? validation_labels : std::vector<int>{});
-  options_.epochs = options_.max_epochs;
-  if (validation.rows > 0) {
-    base_.fine_tuned(train, train_labels, options_, [&](int pass, const PretrainedClassifier& model) {
-      selection.after_pass(pass, model.probabilities(validation));
-    });
-    options_.epochs = selection.best_pass();
-  }
-  validation_predicted = selection.predicted();
-  return selection.record(options_.max_epochs);
+  return select_passes(options_, validation, validation_labels, validation_predicted,
+                       [&](const CnnOptions& o, const PassReport& report) {
+                         base_.fine_tuned(train, train_labels, o, [&](int pass, const PretrainedClassifier& m) {
+                           report(pass, m.probabilities(validation));
+                         });
+                       });
 }
 
 }  // namespace suite::rice

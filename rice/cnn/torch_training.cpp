@@ -54,8 +54,9 @@ torch::Tensor to_tensor(const cv::Mat& crops, int width, int height, int channel
 
 void train_epochs(const std::function<torch::Tensor(const torch::Tensor&)>& forward,
                   const std::vector<torch::Tensor>& parameters, const std::function<void(bool)>& training,
-                  const torch::Tensor& x, const torch::Tensor& y, const CnnOptions& options,
+                  const torch::Tensor& x, const std::vector<int>& labels, const CnnOptions& options,
                   const std::function<void(int)>& after_epoch) {
+  const torch::Tensor y = torch::tensor(std::vector<int64_t>(labels.begin(), labels.end()), torch::kInt64);
   torch::optim::Adam optimiser(parameters,
                                torch::optim::AdamOptions(options.learning_rate).weight_decay(options.weight_decay));
   std::mt19937_64 rng(options.seed);

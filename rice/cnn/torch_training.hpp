@@ -22,14 +22,14 @@ torch::Tensor to_tensor(const cv::Mat& crops, int width, int height, int channel
                         const std::vector<double>& std);
 
 // `options.epochs` passes of Adam (options.learning_rate, weight_decay) on the cross-entropy of
-// `forward` over `x` and the class indices `y`, in mini-batches of options.batch in an order seeded
+// `forward` over `x` and each row's class index in `labels`, in mini-batches of options.batch in an order seeded
 // with options.seed, each crop turned by a random one of the eight turns and mirror images (non-square
 // crops: the four that keep the shape) when options.augment. `training(true)` is called before each
 // pass, `after_epoch(pass)` after it (when given); a lone last crop sits its pass out (batch
 // normalisation needs two).
 void train_epochs(const std::function<torch::Tensor(const torch::Tensor&)>& forward,
                   const std::vector<torch::Tensor>& parameters, const std::function<void(bool)>& training,
-                  const torch::Tensor& x, const torch::Tensor& y, const CnnOptions& options,
+                  const torch::Tensor& x, const std::vector<int>& labels, const CnnOptions& options,
                   const std::function<void(int)>& after_epoch);
 
 // Softmax of the logits, one row per crop (CV_64F), in double precision.

@@ -50,6 +50,15 @@ cv::Mat read_grey(const std::filesystem::path& path) {
   return grey;
 }
 
+cv::Mat read_for_network(const std::filesystem::path& path, int channels) {
+  if (channels == 1) return read_grey(path);
+  const cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
+  if (image.empty())
+    throw InputError(
+        fmt::format("cannot read image '{}' in colour for the network; save it as PNG or JPEG", path.string()));
+  return image;
+}
+
 void write_png(const std::filesystem::path& path, const cv::Mat& image) {
   bool ok = false;
   std::string detail;

@@ -12,6 +12,10 @@ namespace suite::rice {
 // an image OpenCV decodes.
 cv::Mat read_grey(const std::filesystem::path& path);
 
+// The photograph as a network with `channels` 1 or 3 takes it: read_grey(), or 8-bit BGR colour.
+// InputError naming the file when it cannot be read.
+cv::Mat read_for_network(const std::filesystem::path& path, int channels);
+
 // Writes `image` as PNG; InputError naming the path when it cannot.
 void write_png(const std::filesystem::path& path, const cv::Mat& image);
 
