@@ -407,6 +407,52 @@ TYPED_TEST(DruckerPragerTest, ShearFarOutsideReturnsExactlyOntoTheCone) {
     }
 }
 
+// The rate-dependent friction (mu(I)): a cone return at step dt lands on the cone of the angle
+// atan(mu(I)) with I from the shear strain the return removed, I = sqrt(2) Delta / dt d /
+// sqrt(p / rho_s) (the defining equation, checked on the returned strain to 1e-10 relative);
+// faster straining gives a larger q, between the static cone's and the phi_2 cone's; dt = 0 and
+// tension (p <= 0) keep the static cone.
+TYPED_TEST(DruckerPragerTest, InertialFrictionReturnsOntoTheConeOfItsRate) {
+  constexpr int Dim = TypeParam::value;
+  for (double c : {0.0, kCohesion}) {
+    HenckyDruckerPrager m = sand(c);
+    const HenckyDruckerPrager rate_independent = m;
+    const double phi_2 = 40 * std::numbers::pi / 180, I0 = 0.279, d = 0.5e-3, rho_s = 2650;
+    m.set_inertial_friction(phi_2, I0, d, rho_s);
+    const double q_c = m.template cohesion_intercept<Dim>(0.0);
+    const Vector<Dim> eps_tr = strain<Dim>(-1e-3, 2e-3);  // p ~ 8.3e3 Pa, q_tr well outside the static cone
+    const double p = m.template invariants<Dim>(eps_tr).p;
+    double previous = m.template invariants<Dim>(rate_independent.template return_strain<Dim>(eps_tr, 0.0).eps).q;
+    const double M_2 = HenckyDruckerPrager::slope_of_sine<Dim>(std::sin(phi_2));
+    for (double dt : {1e-1, 1e-3, 1e-5, 1e-7, 1e-9}) {
+      const StrainReturn<Dim> r = m.template return_strain<Dim>(eps_tr, 0.0, dt);
+      ASSERT_EQ(r.kind, ReturnCase::cone);
+      const StressInvariants s = m.template invariants<Dim>(r.eps);
+      const auto dev_norm = [](const Vector<Dim>& e) { return (e - Vector<Dim>::Constant(e.sum() / Dim)).norm(); };
+      const double delta = dev_norm(eps_tr) - dev_norm(r.eps);
+      const double I = std::sqrt(2.0) * delta / dt * d / std::sqrt(p / rho_s);
+      const double mu_s = std::tan(kPhi), mu = mu_s + (std::tan(phi_2) - mu_s) * I / (I0 + I);
+      const double M = HenckyDruckerPrager::slope_of_sine<Dim>(mu / std::sqrt(1 + mu * mu));
+      EXPECT_LE(rel_err(s.q, M * p + q_c), 1e-10) << "dt = " << dt << ", c = " << c;
+      EXPECT_NEAR(r.eps.sum(), eps_tr.sum(), 1e-15);  // zero dilatancy, as the static return
+      EXPECT_GT(s.q, previous) << "dt = " << dt;      // faster: more friction
+      EXPECT_LT(s.q, M_2 * p + q_c) << "dt = " << dt;  // never beyond the phi_2 cone
+      previous = s.q;
+    }
+    // At 1e-9 s the rate is huge (the gap to mu_2 falls like I_0 / I, i.e. like dt): the phi_2
+    // cone within 1%.
+    EXPECT_LE(rel_err(previous, M_2 * p + q_c), 1e-2);
+    // dt = 0: the static return, bit for bit.
+    EXPECT_TRUE(m.template return_strain<Dim>(eps_tr, 0.0, 0.0).eps ==
+                rate_independent.template return_strain<Dim>(eps_tr, 0.0).eps);
+  }
+  HenckyDruckerPrager m = sand();
+  EXPECT_THROW(m.set_inertial_friction(kPhi, 0.279, 0.5e-3, 2650), InputError);  // phi_2 must exceed phi_f
+  EXPECT_THROW(m.set_inertial_friction(0.7, 0.0, 0.5e-3, 2650), InputError);
+  EXPECT_THROW(m.set_inertial_friction(0.7, 0.279, -1.0, 2650), InputError);
+  EXPECT_THROW(m.set_inertial_friction(0.7, 0.279, 0.5e-3, 0.0), InputError);
+}
+
 // In 2D the cone is Mohr-Coulomb in the plane: a state returned onto it has
 // (s1 - s2) / 2 = p sin(phi_f) + c cos(phi_f) (compression positive), with the scene's phi_f.
 TEST(DruckerPrager2D, ConeIsMohrCoulombInThePlane) {

@@ -22,7 +22,42 @@ Matrix<Dim> HenckyDruckerPrager::kirchhoff(const Matrix<Dim>& U, const Vector<Di
 }
 
 template <int Dim>
-StrainReturn<Dim> HenckyDruckerPrager::return_strain(const Vector<Dim>& eps_trial, double saturation) const {
+double HenckyDruckerPrager::inertial_yield(double q_trial, double p, double q_c, double dt) const {
+  const InertialFriction& f = inertial;
+  const double shear = std::sqrt(6.0) * mu;  // q per unit |dev eps|, Pa
+  const double mu_s = std::tan(friction_angle);
+  // I per unit Delta: sqrt(2) / dt  d / sqrt(p / rho_s).
+  const double rate = std::sqrt(2.0) / dt * f.grain_diameter / std::sqrt(p / f.grain_density);
+  // g(Delta) = q_tr - shear Delta - M(mu(I(Delta))) p - q_c, decreasing, g(0) > 0 >= g(hi).
+  const auto g = [&](double delta, double& slope) {
+    const double I = rate * delta;
+    const double m = mu_s + (f.tan_limit - mu_s) * I / (f.inertial_number_0 + I);
+    const double sine = m / std::sqrt(1 + m * m);  // sin(atan m)
+    // dM/dDelta = dM/dsin dsin/dm dm/dI dI/dDelta.
+    const double dm =
+        (f.tan_limit - mu_s) * f.inertial_number_0 / ((f.inertial_number_0 + I) * (f.inertial_number_0 + I));
+    const double dsine = 1 / ((1 + m * m) * std::sqrt(1 + m * m));
+    const double dslope = Dim == 2 ? std::sqrt(3.0) : 18 / ((3 - sine) * (3 - sine));
+    slope = -shear - dslope * dsine * dm * rate * p;
+    return q_trial - shear * delta - slope_of_sine<Dim>(sine) * p - q_c;
+  };
+  double lo = 0, hi = (q_trial - friction_slope<Dim>() * p - q_c) / shear;  // hi: the static return's
+  double delta = 0, slope = 0;
+  for (int it = 0; it < 100; ++it) {
+    const double value = g(delta, slope);
+    if (value > 0)
+      lo = delta;
+    else
+      hi = delta;
+    if (std::abs(value) <= 1e-13 * q_trial || hi - lo <= 1e-15 * hi) break;
+    const double next = delta - value / slope;  // Newton's step where it stays in the bracket
+    delta = next > lo && next < hi ? next : 0.5 * (lo + hi);
+  }
+  return q_trial - shear * delta;
+}
+
+template <int Dim>
+StrainReturn<Dim> HenckyDruckerPrager::return_strain(const Vector<Dim>& eps_trial, double saturation, double dt) const {
   const double K = bulk_modulus<Dim>();
   const double M = friction_slope<Dim>();
   const double q_c = cohesion_intercept<Dim>(saturation);
@@ -42,31 +77,34 @@ StrainReturn<Dim> HenckyDruckerPrager::return_strain(const Vector<Dim>& eps_tria
   const Vector<Dim> dev = eps_trial - mean * Vector<Dim>::Ones();
   if (6 * mu * mu * dev.squaredNorm() <= q_yield * q_yield) return {eps_trial, ReturnCase::elastic};
 
-  // Cone: q_tr > q_yield >= 0, so q_tr > 0. Scale the deviator so that q = q_yield; the trace,
-  // hence p and the volume, stays (zero dilatancy).
+  // Cone: q_tr > q_yield >= 0, so q_tr > 0. Scale the deviator so that q = q_yield (with the
+  // rate-dependent friction the larger q of the rate); the trace, hence p and the volume, stays
+  // (zero dilatancy).
   const double q_trial = 2 * mu * std::sqrt(1.5) * dev.norm();  // as invariants() gives it
-  return {(mean * Vector<Dim>::Ones() + (q_yield / q_trial) * dev).eval(), ReturnCase::cone};
+  const double q_new = inertial.on && dt > 0 && p_trial > 0 ? inertial_yield<Dim>(q_trial, p_trial, q_c, dt) : q_yield;
+  return {(mean * Vector<Dim>::Ones() + (q_new / q_trial) * dev).eval(), ReturnCase::cone};
 }
 
 template <int Dim>
-ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const {
-  return project<Dim>(F_trial, stretch_spectrum<Dim>(F_trial), log_jp, saturation);
+ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, double log_jp, double saturation,
+                                               double dt) const {
+  return project<Dim>(F_trial, stretch_spectrum<Dim>(F_trial), log_jp, saturation, dt);
 }
 
 template <int Dim, int N>
 void HenckyDruckerPrager::project_all(const Matrix<Dim>* F_trial, const double* log_jp, const double* saturation,
-                                      ReturnResult<Dim>* out) const {
+                                      ReturnResult<Dim>* out, double dt) const {
   StretchSpectrum<Dim> s[N];
   stretch_spectra<Dim, N>(F_trial, s);
   // The strain tensors of all N, of which the elastic returns use theirs.
   Matrix<Dim> log_v[N];
   log_left_stretches<Dim, N>(s, log_v);
-  for (int n = 0; n < N; ++n) out[n] = project<Dim>(F_trial[n], s[n], log_jp[n], saturation[n], &log_v[n]);
+  for (int n = 0; n < N; ++n) out[n] = project<Dim>(F_trial[n], s[n], log_jp[n], saturation[n], dt, &log_v[n]);
 }
 
 template <int Dim>
 ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, const StretchSpectrum<Dim>& s, double log_jp,
-                                               double saturation, const Matrix<Dim>* log_v) const {
+                                               double saturation, double dt, const Matrix<Dim>* log_v) const {
   const double shift = volume_correction ? log_jp : 0.0;  // log-volume added to the trial strain
   // An elastic return: U exp(eps + shift/Dim) V^T = exp(shift/Dim) F_trial, no round-off from U;
   // log_jp goes to 0 (the trace is kept) or through without the correction; the stress, where
@@ -87,7 +125,7 @@ ReturnResult<Dim> HenckyDruckerPrager::project(const Matrix<Dim>& F_trial, const
 
   const LeftStretch<Dim> b = left_stretch<Dim>(F_trial);
   const Vector<Dim> eps = (b.log_sigma.array() + shift / Dim).matrix();
-  const StrainReturn<Dim> r = return_strain<Dim>(eps, saturation);
+  const StrainReturn<Dim> r = return_strain<Dim>(eps, saturation, dt);
   // Elastic here where the closed form was not accurate or its strains were just outside the cone.
   if (r.kind == ReturnCase::elastic) return elastic([&] { return kirchhoff<Dim>(b.U, b.log_sigma); });
 

@@ -41,6 +41,19 @@ HenckyDruckerPrager HenckyDruckerPrager::from_young(double young, double poisson
   return m;
 }
 
+void HenckyDruckerPrager::set_inertial_friction(double limit_angle, double inertial_number_0, double grain_diameter,
+                                                double grain_density) {
+  if (!(limit_angle > friction_angle && limit_angle < std::numbers::pi / 2))
+    reject("friction_angle_2", limit_angle, "the limit friction angle phi_2 must lie in (friction_angle, pi/2) rad");
+  if (!(std::isfinite(inertial_number_0) && inertial_number_0 > 0))
+    reject("inertial_number_0", inertial_number_0, "I_0 must be > 0");
+  if (!(std::isfinite(grain_diameter) && grain_diameter > 0))
+    reject("grain_diameter", grain_diameter, "the grain diameter must be > 0 m");
+  if (!(std::isfinite(grain_density) && grain_density > 0))
+    reject("grain_density", grain_density, "the grains' density must be > 0 kg/m^3");
+  inertial = {true, std::tan(limit_angle), inertial_number_0, grain_diameter, grain_density};
+}
+
 double HenckyDruckerPrager::p_wave_speed(double density) const {
   return std::sqrt((lambda + 2 * mu) / density);
 }

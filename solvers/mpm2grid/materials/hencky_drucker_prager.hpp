@@ -42,6 +42,21 @@
 // With phi_f = 0 (M = 0) there is no apex: the surface is the cylinder q <= q_c (pressure-
 // independent), and a cohesionless, frictionless soil keeps only its volumetric response.
 //
+// Rate-dependent friction (optional, `inertial`): the mu(I) rheology of dense granular flow
+// (GDR MiDi 2004, Eur. Phys. J. E 14, 341; Jop, Forterre & Pouliquen 2006, Nature 441, 727):
+//   mu(I) = mu_s + (mu_2 - mu_s) I / (I_0 + I),   I = gamma_p d / sqrt(p / rho_s)
+// with mu_s = tan(phi_f), mu_2 = tan(phi_2), gamma_p the plastic shear rate (1/s), d the grain
+// diameter (m), rho_s the grains' density (kg/m^3). The cone's slope at a return is M of the
+// angle atan(mu(I)) (the same M(phi) as above), so slow flow and rest keep phi_f and fast flow
+// at low pressure (thin, sheared layers) approaches phi_2. The return is elastic when q_tr <=
+// M(phi_f) p + q_c, as without it; otherwise the deviator is scaled to q_new, the root of
+//   q_tr - sqrt(6) mu_G Delta = M(atan mu(I(Delta))) p + q_c,   I(Delta) = sqrt(2) (Delta / dt)
+//   d / sqrt(p / rho_s)
+// (Delta = |dev eps_tr| - |dev eps_new|, the deviatoric Hencky strain the return removes in
+// the step dt; sqrt(2) |dev eps| is the shear strain gamma in simple shear), found by Newton's
+// method safeguarded by bisection. At p <= 0 (cohesive soil in tension) and with dt = 0 (a
+// static return, the initial state's) the static cone applies.
+//
 // Cohesion. c(S) = c0 (1 - clamp(S, 0, 1)): dry soil (S = 0) has the full cohesion c0, fully
 // saturated soil (S = 1) none.
 //
@@ -126,6 +141,15 @@ StressInvariants kirchhoff_invariants(const Matrix<Dim>& tau) {
 template <int Dim>
 struct StretchSpectrum;  // materials/log_stretch.hpp
 
+// The mu(I) parameters (see "Rate-dependent friction" above); `on` false: rate-independent.
+struct InertialFriction {
+  bool on = false;
+  double tan_limit = 0;          // mu_2 = tan(phi_2), > mu_s
+  double inertial_number_0 = 0;  // I_0, > 0
+  double grain_diameter = 0;     // d, m
+  double grain_density = 0;      // rho_s, kg/m^3
+};
+
 struct HenckyDruckerPrager {
   // A default-constructed material has zero stiffness and is not usable as is: build real
   // ones with from_young().
@@ -136,6 +160,7 @@ struct HenckyDruckerPrager {
   double cos_friction = 1;    // return mapping needs them for every particle and step)
   double cohesion = 0;        // c0 of dry soil, Pa (stress-space form, see q_c above)
   bool volume_correction = true;
+  InertialFriction inertial;  // rate-dependent friction, off by default
 
   // mu = E / (2 (1 + nu)), lambda = E nu / ((1 + nu)(1 - 2 nu)). Throws suite::InputError
   // unless E > 0, -1 < nu < 0.5, 0 <= phi_f < pi/2, c0 >= 0 (all finite).
@@ -150,9 +175,16 @@ struct HenckyDruckerPrager {
   // M: 6 sin(phi_f) / (3 - sin(phi_f)) in 3D, sqrt(3) sin(phi_f) in 2D; dimensionless.
   template <int Dim>
   double friction_slope() const {
-    const double s = sin_friction;
+    return slope_of_sine<Dim>(sin_friction);
+  }
+  // M of a friction angle given by its sine s.
+  template <int Dim>
+  static double slope_of_sine(double s) {
     return Dim == 2 ? std::sqrt(3.0) * s : 6 * s / (3 - s);
   }
+  // Turns the rate-dependent friction on: phi_2 (rad, in (phi_f, pi/2)), I_0 > 0, d > 0 (m),
+  // rho_s > 0 (kg/m^3). Throws suite::InputError naming the parameter otherwise.
+  void set_inertial_friction(double limit_angle, double inertial_number_0, double grain_diameter, double grain_density);
   // c(S) = c0 (1 - clamp(S, 0, 1)), Pa.
   double cohesion_at(double saturation) const { return cohesion * (1 - std::clamp(saturation, 0.0, 1.0)); }
   // q_c(S): 6 c(S) cos(phi_f) / (3 - sin(phi_f)) in 3D, sqrt(3) c(S) cos(phi_f) in 2D; Pa.
@@ -178,27 +210,33 @@ struct HenckyDruckerPrager {
   // p and q (Pa) of a principal Hencky strain.
   template <int Dim>
   StressInvariants invariants(const Vector<Dim>& eps) const;
-  // The return mapping on principal strains (no volume correction): apex, elastic or cone.
+  // The return mapping on principal strains (no volume correction): apex, elastic or cone. dt
+  // (s) is the step the trial strain was made in, for the rate-dependent friction (0: static).
   template <int Dim>
-  StrainReturn<Dim> return_strain(const Vector<Dim>& eps_trial, double saturation) const;
+  StrainReturn<Dim> return_strain(const Vector<Dim>& eps_trial, double saturation, double dt = 0) const;
+  // The cone return's equivalent shear stress q_new (Pa) under the rate-dependent friction:
+  // trial q_tr > M(phi_f) p + q_c, pressure p > 0, dt > 0 (see "Rate-dependent friction").
+  template <int Dim>
+  double inertial_yield(double q_trial, double p, double q_c, double dt) const;
   // The full plastic step of one particle: principal stretches of the trial F_E (left_stretch),
   // volume-correction shift, return mapping with the cohesion of `saturation`, F_E = U
   // exp(eps_new) V^T, new log_jp. An elastic return gives back F_trial itself (times
   // exp(log_jp / Dim) when the volume correction has something stored), with no round-off.
+  // dt as in return_strain().
   template <int Dim>
-  ReturnResult<Dim> project(const Matrix<Dim>& F_trial, double log_jp, double saturation) const;
-  // project() of N particles at once, out[n] as project(F_trial[n], log_jp[n], saturation[n])
+  ReturnResult<Dim> project(const Matrix<Dim>& F_trial, double log_jp, double saturation, double dt = 0) const;
+  // project() of N particles at once, out[n] as project(F_trial[n], log_jp[n], saturation[n], dt)
   // alone: their spectra computed together (stretch_spectra in log_stretch.hpp), whose chains of
   // dependent operations then overlap (with N = 4 and log V staged too: docs/mpm2grid.md, "Benchmarks").
   template <int Dim, int N>
-  void project_all(const Matrix<Dim>* F_trial, const double* log_jp, const double* saturation,
-                   ReturnResult<Dim>* out) const;
+  void project_all(const Matrix<Dim>* F_trial, const double* log_jp, const double* saturation, ReturnResult<Dim>* out,
+                   double dt = 0) const;
 
  private:
   // project() given the spectrum s of F_trial (and its log V, when known).
   template <int Dim>
   ReturnResult<Dim> project(const Matrix<Dim>& F_trial, const StretchSpectrum<Dim>& s, double log_jp, double saturation,
-                            const Matrix<Dim>* log_v = nullptr) const;
+                            double dt, const Matrix<Dim>* log_v = nullptr) const;
   // Kirchhoff stress 2 mu log V + lambda log J I of a Hencky strain tensor log V, log J = tr log V.
   template <int Dim>
   Matrix<Dim> hencky_stress(const Matrix<Dim>& log_v, double log_j) const;

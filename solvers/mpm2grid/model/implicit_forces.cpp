@@ -199,7 +199,7 @@ SUITE_VECTOR_CLONES bool Simulation<Dim>::trial_forces(double dt) {
                                                    inverted += !(step.determinant() > 0);
                                                    s.soil_stress[p] = step.inverse().transpose();
                                                  });
-  trial_stresses();
+  trial_stresses(dt);
   for (auto* f : {&s.water_force, &s.soil_force}) std::fill(f->force.begin(), f->force.end(), Vec<Dim>::Zero());
   spread(s.water_probe, {.pressure = &s.water_pressure, .walls = &water_fold_}, s.water_force);
   spread(s.soil_probe, {.tau = &s.soil_stress, .walls = &fold_}, s.soil_force);
@@ -218,7 +218,7 @@ SUITE_VECTOR_CLONES bool Simulation<Dim>::trial_forces(double dt) {
 // (I + dt grad v)^-T in soil_stress; with plastic_solve, tau of F^ returned onto Drucker-Prager,
 // kBatch particles at a time as in the particle update (HenckyDruckerPrager::project_all).
 template <int Dim>
-SUITE_INLINE_CALLS void Simulation<Dim>::trial_stresses() {
+SUITE_INLINE_CALLS void Simulation<Dim>::trial_stresses(double dt) {
   ImplicitState<Dim>& s = implicit_;
   const HenckyDruckerPrager& material = s_.soil.material;
   if (!s_.plastic_solve) {
@@ -239,7 +239,7 @@ SUITE_INLINE_CALLS void Simulation<Dim>::trial_stresses() {
       saturation[k] = real ? soil_.saturation[p] : 0.0;
     }
     ReturnResult<Dim> r[kBatch];
-    material.template project_all<Dim, kBatch>(trial, log_jp, saturation, r);
+    material.template project_all<Dim, kBatch>(trial, log_jp, saturation, r, dt);
     for (int k = 0; k < count; ++k) {
       const std::size_t p = first + static_cast<std::size_t>(k);
       const Mat<Dim> tau = r[k].has_stress ? r[k].stress : material.template kirchhoff<Dim>(r[k].F);

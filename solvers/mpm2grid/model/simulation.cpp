@@ -547,7 +547,7 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
       log_jp[n] = soil_.log_jp[p];
     }
     ReturnResult<Dim> r[kBatch];
-    s_.soil.material.template project_all<Dim, kBatch>(trial, log_jp, saturation, r);
+    s_.soil.material.template project_all<Dim, kBatch>(trial, log_jp, saturation, r, dt);
     for (int n = 0; n < count; ++n) {
       const std::size_t p = first + static_cast<std::size_t>(n);
       soil_.F[p] = r[n].F;

@@ -198,7 +198,7 @@ class Simulation {
   void solve_grid_implicit(double dt);  // model/implicit_forces.cpp
   bool implicit_residual(const double* x, double* r, double dt, double t_next);
   bool trial_forces(double dt);
-  void trial_stresses();
+  void trial_stresses(double dt);
   void constrain(double t_next);
   template <class F>
   void for_each_unknown(F&& f);

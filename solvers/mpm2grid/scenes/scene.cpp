@@ -190,6 +190,13 @@ Scene<Dim> read_scene(const config::Config& cfg) {
       sim.soil.material.cohesion =
           cohesion_of_strain_shift(c_C, sim.soil.material.template bulk_modulus<Dim>(), phi);
     }
+    if (const auto mu_i = s->optional_section("inertial_friction")) {
+      const double phi_2 = mu_i->quantity("friction_angle_2", "rad", Range::between(0.0, 1.5));
+      if (!(phi_2 > phi)) mu_i->reject("friction_angle_2", "must be larger than soil.friction_angle");
+      sim.soil.material.set_inertial_friction(phi_2, mu_i->number("inertial_number_0", Range::positive()),
+                                              mu_i->quantity("grain_diameter", "m", Range::positive()),
+                                              mu_i->quantity("grain_density", "kg/m^3", Range::positive()));
+    }
     read_erosion(*s, sim.erosion);
     sim.soil.porosity = s->number("porosity", 0.4, Range{0.0, 1.0, true, true});
     sim.soil.conductivity = s->quantity("conductivity", "m/s", 1e-4, Range::positive());
