@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # The implicit forces on the granular column collapse (scenes/granular_column_collapse.yaml,
-# a = 1, 10 mm, soil.flip 0.99 so that the step count does not move the runout): with
+# a = 1, 10 mm, the scene's soil.flip 0.99 so that the step count does not move the runout): with
 # Drucker-Prager inside the Newton solve (implicit.plasticity in_solve, the default) the
-# deposit's runout equals the explicit forces' within 2% (measured 2026-11-27: 1.4906 against
-# 1.4899, at 1000 steps of 1 ms against 7600 of the soil's wave limit; the bound is twice the
-# 1.1% the explicit runout itself moves between cfl 0.4 and 0.1, mpm2grid_soil_flip_dt); with the soil elastic in
-# the solve and projected after it (after_solve, the dissertation's eq. 3.26) each step's
-# velocities are an elastic column's and it hardly collapses (0.32): checked below 0.7 times the
+# deposit's runout (check_granular_collapse.py: 98% of the soil behind) equals the explicit
+# forces' within 4.5% (measured 2026-11-27: 1.3172 against 1.3418, 1.8% apart, at 1000 steps of
+# 1 ms against 7600 of the soil's wave limit; the bound is twice the 2.2% the explicit runout
+# itself moves between cfl 0.4 and 0.1, mpm2grid_soil_flip_dt); with the soil elastic in the
+# solve and projected after it (after_solve, the dissertation's eq. 3.26) each step's
+# velocities are an elastic column's and it hardly collapses (0.26): checked below 0.7 times the
 # explicit runout, so that the check above has something to tell apart.
 #   run_implicit_collapse.sh MPM2GRID SCENES_DIR WORKDIR PYTHON
 set -euo pipefail
@@ -27,6 +28,6 @@ import sys
 e, i, a = map(float, sys.argv[1:])
 print(f"deposit runout: explicit forces {e:.4f}, implicit {i:.4f} ({100 * abs(i / e - 1):.2f}% apart), "
       f"implicit with the soil elastic in the solve {a:.4f}")
-assert abs(i / e - 1) <= 0.02, "the implicit forces' runout is more than 2% from the explicit forces'"
+assert abs(i / e - 1) <= 0.045, "the implicit forces' runout is more than 4.5% from the explicit forces'"
 assert a < 0.7 * e, "the soil elastic in the solve no longer holds the column back: the check guards nothing"
 PY
