@@ -162,21 +162,29 @@ void Simulation<Dim>::particles_to_grids(double dt) {
   const double fold_dt = s_.drag == DragScheme::explicit_euler ? 0.0 : dt;
   // The implicit forces leave the stresses out here (model/implicit_forces.cpp adds them).
   const bool implicit = s_.forces == ForceScheme::implicit_end;
-  if (s_.water.flip > 0) velocities_before(water_, water_fold_, water_before_);
-  if (s_.soil.flip > 0) velocities_before(soil_, fold_, soil_before_);
+  // With a FLIP share the same sweep spreads the mass and momentum before the forces.
+  NodeFields<Dim>* water_before = s_.water.flip > 0 ? &water_before_ : nullptr;
+  NodeFields<Dim>* soil_before = s_.soil.flip > 0 ? &soil_before_ : nullptr;
+  for (NodeFields<Dim>* before : {water_before, soil_before})
+    if (before) before->reset(grid_.nodes());
   {
     auto timed = phase(StepPhase::p2g_water);
     spread(water_,
            {.pressure = &water_pressure_, .pressure_force = !implicit, .fold_dt = fold_dt, .walls = &water_fold_,
-            .gravity = s_.gravity},
+            .gravity = s_.gravity, .before = water_before},
            water_nodes_);
   }
   if (dd_) {
     auto timed = phase(StepPhase::halo_sum);
     dd_->sum_to_owners(water_nodes_);
+    if (water_before) dd_->sum_to_owners(*water_before);
   }
-  P2GSources<Dim> soil{
-      .tau = implicit ? nullptr : &soil_tau_, .drag = &soil_drag_, .fold_dt = fold_dt, .walls = &fold_, .gravity = s_.gravity};
+  P2GSources<Dim> soil{.tau = implicit ? nullptr : &soil_tau_,
+                       .drag = &soil_drag_,
+                       .fold_dt = fold_dt,
+                       .walls = &fold_,
+                       .gravity = s_.gravity,
+                       .before = soil_before};
   if (s_.buoyancy) {
     auto& p = water_nodes_.pressure;
     for (std::size_t i = 0; i < grid_.nodes(); ++i) p[i] = water_nodes_.mass[i] > 0 ? p[i] / water_nodes_.mass[i] : 0.0;
@@ -195,7 +203,10 @@ void Simulation<Dim>::particles_to_grids(double dt) {
   if (dd_) {
     auto timed = phase(StepPhase::halo_sum);
     dd_->sum_to_owners(soil_nodes_);
+    if (soil_before) dd_->sum_to_owners(*soil_before);
   }
+  if (water_before) velocities_before(StepPhase::p2g_water, *water_before);
+  if (soil_before) velocities_before(StepPhase::p2g_soil, *soil_before);
 }
 
 template <int Dim>
@@ -349,22 +360,13 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mixture_volume_rates(double dt) {
       });
 }
 
-// With a FLIP share: a species' node velocities before the step's forces, from its particles'
-// mass and APIC momentum alone, complete on owned and ghost nodes.
+// With a FLIP share: a species' node velocities before the step's forces, from the mass and
+// APIC momentum its P2G spread into `before` (summed to the owners), complete on owned and ghost
+// nodes.
 template <int Dim>
-void Simulation<Dim>::velocities_before(const Particles<Dim>& P, const WallFold<Dim>& walls,
-                                        NodeFields<Dim>& before) {
+void Simulation<Dim>::velocities_before(StepPhase p2g, NodeFields<Dim>& before) {
   {
-    auto timed = phase(&P == &water_ ? StepPhase::p2g_water : StepPhase::p2g_soil);
-    before.reset(grid_.nodes());
-    spread(P, {.walls = &walls}, before);
-  }
-  if (dd_) {
-    auto timed = phase(StepPhase::halo_sum);
-    dd_->sum_to_owners(before);
-  }
-  {
-    auto timed = phase(&P == &water_ ? StepPhase::p2g_water : StepPhase::p2g_soil);
+    auto timed = phase(p2g);
     for (std::size_t i = 0; i < grid_.nodes(); ++i)
       before.velocity[i] = before.mass[i] > 0 ? Vec<Dim>(before.momentum[i] / before.mass[i]) : Vec<Dim>(Vec<Dim>::Zero());
   }
@@ -383,29 +385,16 @@ void Simulation<Dim>::distribute() {
 // update samples the grid itself).
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
-  if (s_.water.flip > 0) v_before_ = water_.v;  // the particles' velocities before the step
+  const FlipBlend<Dim> flip{s_.water.flip > 0 ? &water_before_ : nullptr, s_.water.flip};
   if (s_.mixture) {
     grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
-                                                   [](std::size_t) {});
+                                                   [](std::size_t) {}, flip);
   } else {
     divergence_.resize(water_.size());
-    grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
-                                                         [&](std::size_t p, double div) { divergence_[p] = div; });
+    grid_to_particles_each<VelocityGradient::divergence>(
+        water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
+        [&](std::size_t p, double div) { divergence_[p] = div; }, flip);
   }
-  if (s_.water.flip > 0) blend_flip(water_, water_nodes_, water_before_, water_fold_, s_.water.flip);
-}
-
-// v_p = share (v_p before + sum_i w_ip (v_i - v_i before)) + (1 - share) v_p APIC, with the
-// velocities before in v_before_; C_p stays APIC's. `before` is left holding the change.
-template <int Dim>
-void Simulation<Dim>::blend_flip(Particles<Dim>& P, const NodeFields<Dim>& nodes, NodeFields<Dim>& before,
-                                 const WallFold<Dim>& walls, double share) {
-  for (std::size_t i = 0; i < grid_.nodes(); ++i)
-    before.velocity[i] =
-        nodes.mass[i] > 0 ? Vec<Dim>(nodes.velocity[i] - before.velocity[i]) : Vec<Dim>(Vec<Dim>::Zero());
-  probe_.x = P.x;
-  sample(before, walls);
-  for (std::size_t p = 0; p < P.size(); ++p) P.v[p] = share * (v_before_[p] + probe_.v[p]) + (1 - share) * P.v[p];
 }
 
 // probe_.v and probe_.C: the velocity and APIC matrix of `nodes` at the points probe_.x.
@@ -457,9 +446,8 @@ void Simulation<Dim>::wall_water_fill() {
 // the return mapping's cohesion is the step's own.
 template <int Dim>
 SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
-  if (s_.soil.flip > 0) v_before_ = soil_.v;
-  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_fill_, &soil_.saturation, &fold_);
-  if (s_.soil.flip > 0) blend_flip(soil_, soil_nodes_, soil_before_, fold_, s_.soil.flip);
+  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_fill_, &soil_.saturation, &fold_,
+                    {s_.soil.flip > 0 ? &soil_before_ : nullptr, s_.soil.flip});
   if (s_.erosion.on) carry_suspended();
 }
 

@@ -207,9 +207,7 @@ class Simulation {
   void solid_fractions();
   void mixture_volume_rates(double dt);
   void water_velocities();
-  void velocities_before(const Particles<Dim>& P, const WallFold<Dim>& walls, NodeFields<Dim>& before);
-  void blend_flip(Particles<Dim>& P, const NodeFields<Dim>& nodes, NodeFields<Dim>& before, const WallFold<Dim>& walls,
-                  double share);
+  void velocities_before(StepPhase p2g, NodeFields<Dim>& before);
   void wall_water_fill();
   void soil_velocities();
   void carry_suspended();
@@ -228,11 +226,10 @@ class Simulation {
   WallFold<Dim> water_fold_;  // and in the water's
   NodeFields<Dim> water_nodes_, soil_nodes_;
   // With a FLIP share: each species' node velocities from its particles before the step's forces
-  // (mass and momentum spread alone) and the particles' velocities before the step. probe_:
-  // points at which sample() reads a grid field's velocity (the FLIP share's change of velocity,
-  // the detached soil's water velocity).
+  // (the mass and momentum its P2G spreads beside the forces), which G2P blends in
+  // (transfer/apic.hpp, FlipBlend). probe_:
+  // points at which sample() reads a grid field's velocity (the detached soil's water velocity).
   NodeFields<Dim> water_before_, soil_before_;
-  std::vector<Vec<Dim>> v_before_;
   Particles<Dim> probe_;
   std::vector<Mat<Dim>> soil_tau_, grad_v_;  // the soil's Kirchhoff stresses and velocity gradients
   std::vector<double> divergence_;           // the water's div v

@@ -99,6 +99,10 @@ struct P2GSources {
   // Gravity (m/s^2): the body force m_p g spread with w_ip like the others, so that the walls'
   // fold treats it as it treats them.
   Vec<Dim> gravity = Vec<Dim>::Zero();
+  // With a FLIP share: the particles' mass and APIC momentum alone (no forces) are also added to
+  // before->mass and before->momentum (reset by the caller) in the same sweep. With fold_dt > 0
+  // the forces are then kept apart in the tile and folded into nodes.momentum as it is added.
+  NodeFields<Dim>* before = nullptr;
 };
 
 namespace detail {
@@ -135,15 +139,23 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
     tile->gather(kRead, *in.node_pressure);
     if (in.walls) in.walls->mirror(*tile, read);
   };
+  // Only with `before` does a folding P2G come here (Fold false): its forces fold as they are added.
+  const double fold_at_leave = Fold ? 0.0 : in.fold_dt;
   const auto leave = [&] {
     if (in.walls) in.walls->fold(*tile, fields);
     tile->for_each_node([&](int t, long slot) {
       const auto i = static_cast<std::size_t>(slot);
       nodes.mass[i] += tile->field(0)[t];
       for (int a = 0; a < Dim; ++a) nodes.momentum[i][a] += tile->field(1 + a)[t];
-      if (forced)
+      if (fold_at_leave > 0)
+        for (int a = 0; a < Dim; ++a) nodes.momentum[i][a] += fold_at_leave * tile->field(1 + Dim + a)[t];
+      else if (forced)
         for (int a = 0; a < Dim; ++a) nodes.force[i][a] += tile->field(1 + Dim + a)[t];
       if (extra) extra_field[i] += tile->field(kExtra)[t];
+      if (in.before) {
+        in.before->mass[i] += tile->field(0)[t];
+        for (int a = 0; a < Dim; ++a) in.before->momentum[i][a] += tile->field(1 + a)[t];
+      }
     });
   };
   Mat<Dim> S = Mat<Dim>::Zero();
@@ -180,7 +192,7 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
     throw std::invalid_argument(
         "particles_to_grid: give tau or pressure (not both), drag or pressure (not both), and solid_volume "
         "together with node_pressure");
-  if (in.fold_dt > 0)
+  if (in.fold_dt > 0 && !in.before)
     detail::particles_to_grid<true>(P, in, grid, nodes);
   else
     detail::particles_to_grid<false>(P, in, grid, nodes);
@@ -193,23 +205,40 @@ enum class VelocityGradient {
   none,
 };
 
-// G2P over the particles in order: v_p and C_p, with `field` sum_i w_ip field_i into
-// `at_particles` (resized; the soil's saturation from the water's node masses), then
-// each(p, grad v_p) (full), each(p, div v_p) (divergence) or each(p) (none) for the caller to
-// keep what it needs. With `walls`, the nodes beyond the walls are read as their mirrors
-// (boundary/wall_fold.hpp).
-template <VelocityGradient Gradient, int Dim, class Each>
-void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
-                            const std::vector<double>* field, std::vector<double>* at_particles,
-                            const std::type_identity_t<WallFold<Dim>>* walls, Each&& each) {
-  if (!field != !at_particles) throw std::invalid_argument("grid_to_particles: a field to sample needs its output");
-  using Tile = NodeTile<Dim, Dim + 1>;  // velocity, the sampled field
+// A FLIP share in G2P (Simulation's water.flip and soil.flip): with the node velocities
+// before the step's forces v_i^0 (complete on the nodes the particles reach) and the share a,
+//   v_p <- a (v_p + sum_i w_ip v_i - sum_i w_ip v_i^0) + (1 - a) sum_i w_ip v_i,
+// i.e. the particle keeps its own velocity and takes the grid's change, blended with APIC's
+// velocity; C_p and grad v_p stay APIC's. No `before`: APIC alone.
+template <int Dim>
+struct FlipBlend {
+  const NodeFields<Dim>* before = nullptr;
+  double share = 0;
+};
+
+namespace detail {
+
+// No gradient for field a (a pack of sample_fields' Axes, one per field).
+constexpr Axes no_gradient(int) {
+  return kNoAxes;
+}
+
+// grid_to_particles_each with the FLIP blend (Blend) or without.
+template <VelocityGradient Gradient, bool Blend, int Dim, class Each>
+void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
+                       const std::vector<double>* field, std::vector<double>* at_particles, const WallFold<Dim>* walls,
+                       Each&& each, const FlipBlend<Dim>& flip) {
+  // Velocity, the sampled field, and with the blend the velocity before the forces.
+  constexpr int kFields = Blend ? 2 * Dim + 1 : Dim + 1;
+  using Tile = NodeTile<Dim, kFields>;
   auto tile = std::make_unique<Tile>();
   const double inverse_d = apic_inverse_d(grid.spacing());
   if (at_particles) at_particles->resize(P.size());
   constexpr auto fields = [] {
-    std::array<TileField, Dim + 1> f{};
+    std::array<TileField, kFields> f{};
     for (int a = 0; a < Dim; ++a) f[static_cast<std::size_t>(a)] = {TileField::component, a};
+    if constexpr (Blend)
+      for (int a = 0; a < Dim; ++a) f[static_cast<std::size_t>(Dim + 1 + a)] = {TileField::component, a};
     return f;
   }();
   const auto enter = [&] {
@@ -218,6 +247,8 @@ void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const
       const auto i = static_cast<std::size_t>(slot);
       for (int a = 0; a < Dim; ++a) tile->field(a)[t] = nodes.velocity[i][a];
       if (field) tile->field(Dim)[t] = (*field)[i];
+      if constexpr (Blend)
+        for (int a = 0; a < Dim; ++a) tile->field(Dim + 1 + a)[t] = flip.before->velocity[i][a];
     });
     if (walls) walls->mirror(*tile, fields);
   };
@@ -236,9 +267,21 @@ void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const
         Mat<Dim> grad_v;  // with the divergence only its diagonal (the rest 0)
         for (int a = 0; a < Dim; ++a) {
           const FieldSample<Dim>& va = velocity[static_cast<std::size_t>(a)];
-          P.v[p][a] = va.value;
           P.C[p].row(a) = inverse_d * va.moment.transpose();
           grad_v.row(a) = va.gradient.transpose();
+        }
+        if constexpr (Blend) {
+          const auto before = [&]<int... a>(std::integer_sequence<int, a...>) {
+            return sample_fields<false, no_gradient(a)...>(*tile, Dim + 1, s, first);
+          }
+          (std::make_integer_sequence<int, Dim>{});
+          for (int a = 0; a < Dim; ++a) {
+            const double apic = velocity[static_cast<std::size_t>(a)].value;
+            P.v[p][a] =
+                flip.share * (P.v[p][a] + apic - before[static_cast<std::size_t>(a)].value) + (1 - flip.share) * apic;
+          }
+        } else {
+          for (int a = 0; a < Dim; ++a) P.v[p][a] = velocity[static_cast<std::size_t>(a)].value;
         }
         if (field) (*at_particles)[p] = sample_field<false, kNoAxes>(*tile, Dim, s, first).value;
         if constexpr (Gradient == VelocityGradient::full)
@@ -250,16 +293,36 @@ void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const
       });
 }
 
+}  // namespace detail
+
+// G2P over the particles in order: v_p and C_p, with `field` sum_i w_ip field_i into
+// `at_particles` (resized; the soil's saturation from the water's node masses), then
+// each(p, grad v_p) (full), each(p, div v_p) (divergence) or each(p) (none) for the caller to
+// keep what it needs. With `walls`, the nodes beyond the walls are read as their mirrors
+// (boundary/wall_fold.hpp); with `flip.before`, v_p is blended with FLIP (FlipBlend).
+template <VelocityGradient Gradient, int Dim, class Each>
+void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
+                            const std::vector<double>* field, std::vector<double>* at_particles,
+                            const std::type_identity_t<WallFold<Dim>>* walls, Each&& each,
+                            const FlipBlend<Dim>& flip = {}) {
+  if (!field != !at_particles) throw std::invalid_argument("grid_to_particles: a field to sample needs its output");
+  if (flip.before)
+    detail::grid_to_particles<Gradient, true>(P, grid, nodes, field, at_particles, walls, each, flip);
+  else
+    detail::grid_to_particles<Gradient, false>(P, grid, nodes, field, at_particles, walls, each, flip);
+}
+
 // Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized), and,
 // with `field`, sum_i w_ip field_i per particle into `at_particles` (resized) in the same sweep;
-// with `walls`, the walls' mirror condition.
+// with `walls`, the walls' mirror condition; with `flip.before`, the FLIP blend.
 template <int Dim>
 void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
                        std::vector<Mat<Dim>>& grad_v, const std::vector<double>* field = nullptr,
-                       std::vector<double>* at_particles = nullptr, const WallFold<Dim>* walls = nullptr) {
+                       std::vector<double>* at_particles = nullptr, const WallFold<Dim>* walls = nullptr,
+                       const FlipBlend<Dim>& flip = {}) {
   grad_v.resize(P.size());
-  grid_to_particles_each<VelocityGradient::full>(P, grid, nodes, field, at_particles, walls,
-                                                 [&](std::size_t p, const Mat<Dim>& g) { grad_v[p] = g; });
+  grid_to_particles_each<VelocityGradient::full>(
+      P, grid, nodes, field, at_particles, walls, [&](std::size_t p, const Mat<Dim>& g) { grad_v[p] = g; }, flip);
 }
 
 }  // namespace suite::mpm2grid
