@@ -5,7 +5,7 @@
 # soil lies behind) in the quasi-2D experiments' band, and the two runouts differ by at most 5%
 # of the finer. Why 5%: with first-order convergence the finer run's error is about the change
 # from the coarser, so 5% keeps the resolution's share well inside the band's 33% (measured
-# 2026-11-27: 0.4-2.7% over a = 0.5, 1, 3, 6; benchmarks/results/mpm2grid/granular_collapse.md).
+# 2026-11-27: 0.4-2.8% over a = 0.5, 1, 3, 6; benchmarks/results/mpm2grid/granular_collapse.md).
 #   run_collapse_convergence.sh MPM2GRID SCENE WORKDIR PYTHON BOX_HI
 set -euo pipefail
 bin=$1 scene=$2 work=$3 python=$4 box=$5
