@@ -23,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <unordered_set>
 #include <vector>
 
 #include "solvers/mpm2grid/model/simulation.hpp"
@@ -230,13 +231,28 @@ TEST(BedShear, CohesiveBedErodesAtTheExcessStressRate) {
     c.tau_c = 2;
     Simulation<2> sim(settings<2>(c));
     seed(c, sim);
-    double expected = 0, tau_mean = 0;
+    double expected = 0, tau_mean = 0, expected_volume = 0, deposited = 0;
     long steps = 0;
     const auto cols = [&] { return middle(c, *sim.bed_shear()); };
+    std::unordered_set<long long> detached;  // the ids of the suspended particles before the step
     while (sim.time() < 1.5) {
       const double dt = std::min(sim.stable_dt().dt, 1.5 - sim.time());
       sim.step(dt);
       const auto& b = *sim.bed_shear();
+      // Detached particles that settled back on the bed count as bed soil again.
+      const auto& soil = sim.soil();
+      std::unordered_set<long long> now;
+      for (std::size_t p = 0; p < soil.size(); ++p) {
+        if (b.suspended(soil, p))
+          now.insert(soil.id[p]);
+        else if (detached.count(soil.id[p]))
+          deposited += std::pow(b.side(soil, p), 2);
+      }
+      detached.swap(now);
+      // The volume every column with a top layer under an eroding flow lost (per metre).
+      for (const auto& col : b.columns())
+        if (col.depth > 0 && col.top_layer > 0 && col.shear > c.tau_c)
+          expected_volume += dt * c.kd * (col.shear - c.tau_c) * col.secant * c.h;
       // The rate this step's erosion used, in the middle columns.
       double rate = 0, tau = 0;
       for (auto k : cols()) {
@@ -254,6 +270,15 @@ TEST(BedShear, CohesiveBedErodesAtTheExcessStressRate) {
                 tau_mean / static_cast<double>(steps), measured, expected);
     EXPECT_GT(expected, c.h);  // at least two layers came off
     EXPECT_NEAR(measured / expected, 1.0, 0.02);
+    // The whole bed: what the erosion took (the detached particles whole, the others' eroded
+    // depth, with the particles that left through the outlet) is the columns' kd (tau - tau_c)
+    // integrated over the bed less the deposits, to the depth a particle overshoots when it is
+    // detached (at most one step's, dt kd tau < 1e-5 m of a 1 cm particle: 0.1%).
+    double taken = sim.outflow().shear_eroded_volume;
+    for (std::size_t p = 0; p < sim.soil().size(); ++p) taken += sim.bed_shear()->eroded_volume(sim.soil(), p);
+    std::printf("S = %g: eroded volume %.6f m^2, columns' kd (tau - tau_c) integrated %.6f m^2, deposited %.6f m^2\n",
+                slope, taken, expected_volume, deposited);
+    EXPECT_NEAR(taken / (expected_volume - deposited), 1.0, 0.002);
   }
 }
 

@@ -86,8 +86,9 @@ void BedShear<Dim>::measure(const Particles<Dim>& water, const Particles<Dim>& s
   }
   slopes();
 
-  // The free water above each bed: volume, mass and momentum.
-  constexpr int kSums = 2 + Dim;
+  // The free water above each bed: volume, mass and momentum; and each column's top layer, the
+  // bed particles the erosion shares the column's volume among (whole counts: exact over ranks).
+  constexpr int kSums = 3 + Dim;
   sums_.assign(n * kSums, 0.0);
   for (std::size_t p = 0; p < water.size(); ++p) {
     const std::size_t c = column_of(water.x[p]);
@@ -97,6 +98,9 @@ void BedShear<Dim>::measure(const Particles<Dim>& water, const Particles<Dim>& s
     s[1] += water.mass[p];
     for (int d = 0; d < Dim; ++d) s[2 + d] += water.mass[p] * water.v[p][d];
   }
+  if (erosion_.on)
+    for (std::size_t p = 0; p < soil.size(); ++p)
+      if (in_top_layer(soil, p)) sums_[soil_column_[p] * kSums + 2 + Dim] += 1;
   if (comm && comm->size() > 1) comm->all_reduce(sums_, mpi::Comm::Reduction::sum);
 
   const double area = std::pow(h_, Dim - 1);  // a column's cross-section (per metre of width in 2D)
@@ -104,6 +108,7 @@ void BedShear<Dim>::measure(const Particles<Dim>& water, const Particles<Dim>& s
   for (std::size_t c = 0; c < n; ++c) {
     auto& col = columns_[c];
     const double* s = &sums_[c * kSums];
+    col.top_layer = s[2 + Dim];
     if (!col.has_bed || !(s[1] > 0)) continue;
     const double depth = s[0] / (area * col.secant);
     if (depth < 0.5 * h_) continue;  // an unresolved film: dry
@@ -143,9 +148,17 @@ void BedShear<Dim>::slopes() {
   }
 }
 
+// A bed particle whose top lies within half its side of its column's bed (measure()'s beds).
+template <int Dim>
+bool BedShear<Dim>::in_top_layer(const Particles<Dim>& soil, std::size_t p) const {
+  const auto& col = columns_[soil_column_[p]];
+  return col.has_bed && !suspended(soil, p) && !(soil.x[p][1] + side(soil, p) < col.bed);
+}
+
 template <int Dim>
 void BedShear<Dim>::erode(Particles<Dim>& soil, double dt) const {
   if (!erosion_.on) return;
+  const double area = std::pow(h_, Dim - 1);  // a column's cross-section
   for (std::size_t p = 0; p < soil.size(); ++p) {
     const auto& col = columns_[soil_column_[p]];
     if (!col.has_bed) continue;
@@ -155,8 +168,10 @@ void BedShear<Dim>::erode(Particles<Dim>& soil, double dt) const {
       if (calm && soil.x[p][1] - 0.5 * s <= col.bed) soil.eroded[p] = 0;
       continue;
     }
-    if (calm || soil.x[p][1] + s < col.bed) continue;  // not exposed to a flow that erodes
-    soil.eroded[p] += dt * erosion_.kd * (col.shear - erosion_.tau_c) * col.secant;
+    if (calm || !in_top_layer(soil, p)) continue;  // not exposed to a flow that erodes
+    // The column's volume over its top layer, as a depth of this particle.
+    const double volume = dt * erosion_.kd * (col.shear - erosion_.tau_c) * col.secant * area / col.top_layer;
+    soil.eroded[p] += volume / std::pow(s, Dim - 1);
     if (soil.eroded[p] >= s) {  // detached: stress-free from now on
       soil.eroded[p] = std::numeric_limits<double>::infinity();
       soil.F[p] = Mat<Dim>::Identity();
@@ -185,6 +200,12 @@ void BedShear<Dim>::brake(Particles<Dim>& water, double dt) const {
     const double k = col.shear / (rho_w_ * col.depth * speed);
     water.v[p] -= (dt * k / (1 + dt * k)) * col.velocity;
   }
+}
+
+template <int Dim>
+double BedShear<Dim>::eroded_volume(const Particles<Dim>& soil, std::size_t p) const {
+  const double s = side(soil, p);
+  return std::pow(s, Dim - 1) * std::min(soil.eroded[p], s);  // detached: e_p = infinity
 }
 
 template <int Dim>

@@ -31,9 +31,13 @@
 // shallow-water model does. The reaction on the bed is left out (the soil's strength, kPa,
 // dwarfs the shear, tens of Pa; the erosion below is what the shear does to the soil).
 // Erosion (soil `erosion: excess_stress`). Each bed soil particle carries an eroded depth e_p.
-// One whose top lies within half its side of its column's bed (the column's top layer) and whose
-// column is wet with tau > tau_c gains e_p += dt kd (tau - tau_c) secant (the bed lowers
-// vertically at the normal rate times the secant); when e_p reaches s_p the particle is detached
+// The particles whose top lies within half their side of their column's bed form the column's
+// top layer (N of them, counted over all ranks). A wet column with tau > tau_c loses the volume
+// dt kd (tau - tau_c) secant h^(Dim-1) (its bed lowers vertically at the normal rate times the
+// secant), shared equally by its top layer: e_p += that volume / (N s_p^(Dim-1)). On a flat bed
+// seeded at two particles per cell and axis N = 2^(Dim-1) and each gains dt kd (tau - tau_c);
+// on a slope, where the lattice's staircase leaves fewer particles within half a side of the
+// column's top, the column still loses its volume. When e_p reaches s_p the particle is detached
 // (e_p = infinity from then on, particles/particles.hpp's is_suspended): it carries no stress
 // (F_E = I), moves with the water (its G2P velocity is the water grid's, a dilute suspension's
 // grains) and sinks through it at the settling velocity w_s. A suspended particle whose bottom
@@ -76,6 +80,7 @@ struct BedColumn {
   double depth = 0;  // free water normal to the bed, m (0: dry)
   Vec<Dim> velocity = Vec<Dim>::Zero();  // u, the free water's mean velocity along the bed, m/s
   double shear = 0;                      // tau, Pa
+  double top_layer = 0;                  // N, the bed particles within half their side of the bed
 };
 
 template <int Dim>
@@ -94,6 +99,9 @@ class BedShear {
   void erode(Particles<Dim>& soil, double dt) const;
   // The friction on the water particles above wet beds, over dt.
   void brake(Particles<Dim>& water, double dt) const;
+  // The soil volume the erosion has taken from particle p, m^3 (m^2 per metre in 2D): a detached
+  // particle whole (s_p^Dim), another its eroded depth e_p s_p^(Dim-1); 0 once it deposits.
+  double eroded_volume(const Particles<Dim>& soil, std::size_t p) const;
   // A soil particle's as-placed side s_p, m.
   double side(const Particles<Dim>& soil, std::size_t p) const;
   static bool suspended(const Particles<Dim>& soil, std::size_t p) { return is_suspended(soil.eroded[p]); }
@@ -110,6 +118,7 @@ class BedShear {
 
  private:
   void slopes();
+  bool in_top_layer(const Particles<Dim>& soil, std::size_t p) const;
 
   Vec<Dim> lo_;
   double h_, inv_h_, rho_w_, rho_s_;
@@ -119,7 +128,7 @@ class BedShear {
   Vec<Dim> down_;                  // unit vector along gravity (zero without gravity)
   std::array<long, Dim> count_{};  // columns per axis (1 along y)
   std::vector<BedColumn<Dim>> columns_;
-  std::vector<double> sums_;                // per column: volume, mass, momentum (Dim)
+  std::vector<double> sums_;                // per column: volume, mass, momentum (Dim), top layer
   std::vector<std::uint32_t> soil_column_;  // each soil particle's column at measure()
 };
 

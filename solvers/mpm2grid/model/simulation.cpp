@@ -563,6 +563,7 @@ void Simulation<Dim>::remove_outflow() {
       if (!s_.walls.left_through_open_side(P->x[p])) return true;
       *mass += P->mass[p];
       step.momentum += P->mass[p] * P->v[p];
+      if (P == &soil_ && s_.erosion.on) step.shear_eroded_volume += bed_shear_->eroded_volume(soil_, p);
       return false;
     };
   };
@@ -575,15 +576,16 @@ void Simulation<Dim>::remove_outflow() {
     soil_.retain(keep(soil_, step.soil_mass), known_stress_);
   }
   if (dd_) {  // the record is the same on every rank
-    std::array<double, 2 + Dim> all{};
-    all[0] = step.water_mass, all[1] = step.soil_mass;
-    for (int d = 0; d < Dim; ++d) all[2 + d] = step.momentum[d];
+    std::array<double, 3 + Dim> all{};
+    all[0] = step.water_mass, all[1] = step.soil_mass, all[2] = step.shear_eroded_volume;
+    for (int d = 0; d < Dim; ++d) all[3 + d] = step.momentum[d];
     dd_->waited().time([&] { dd_->comm().all_reduce(all, mpi::Comm::Reduction::sum); });
-    step.water_mass = all[0], step.soil_mass = all[1];
-    for (int d = 0; d < Dim; ++d) step.momentum[d] = all[2 + d];
+    step.water_mass = all[0], step.soil_mass = all[1], step.shear_eroded_volume = all[2];
+    for (int d = 0; d < Dim; ++d) step.momentum[d] = all[3 + d];
   }
   outflow_.water_mass += step.water_mass;
   outflow_.soil_mass += step.soil_mass;
+  outflow_.shear_eroded_volume += step.shear_eroded_volume;
   outflow_.momentum += step.momentum;
 }
 

@@ -111,6 +111,7 @@ struct ParticleExtremes {
 template <int Dim>
 struct Outflow {
   double water_mass = 0, soil_mass = 0;  // kg that left through open sides
+  double shear_eroded_volume = 0;        // m^3 of it the excess-stress erosion had taken (BedShear::eroded_volume)
   Vec<Dim> momentum = Vec<Dim>::Zero();  // their momentum when they left
 };
 

@@ -59,7 +59,8 @@ std::vector<io::CsvColumn> series_columns() {
           {"water_particles", ""},
           {"soil_particles", ""},
           {"bed_shear_max", "Pa"},  // the bed-shear closure's largest shear at the last step's start (0 without it)
-          {"suspended_soil_volume", volume}};  // as placed, of the soil the excess-stress erosion detached
+          {"suspended_soil_volume", volume},  // as placed, of the soil the excess-stress erosion detached
+          {"shear_eroded_volume", volume}};   // what the excess-stress erosion took (shear_eroded_volume())
 }
 
 // profiles.csv: the crest profile (io/dam_measures.hpp) at every particle output time.
@@ -321,7 +322,8 @@ class MpmRun {
                                   static_cast<double>(count(sim_.water())),
                                   static_cast<double>(count(sim_.soil())),
                                   sim_.bed_shear() ? sim_.bed_shear()->largest_shear() : 0.0,
-                                  suspended_volume()};
+                                  suspended_volume(),
+                                  shear_eroded_volume()};
     if (csv_) csv_->append(row);
   }
 
@@ -334,6 +336,16 @@ class MpmRun {
       for (std::size_t p = 0; p < sim_.soil().size(); ++p)
         if (b->suspended(sim_.soil(), p)) m += sim_.soil().mass[p];
     return sim_.sum_over_ranks(m) / scene_.simulation.soil.density;
+  }
+  // The soil the excess-stress erosion took from the bed, net of its deposits: the detached and
+  // the partly eroded particles' volumes (BedShear::eroded_volume), with those of the particles
+  // that left through the outlet; 0 without that erosion. COLLECTIVE.
+  double shear_eroded_volume() const {
+    const auto* b = sim_.bed_shear();
+    if (!b || !scene_.simulation.erosion.on) return 0;
+    double v = 0;
+    for (std::size_t p = 0; p < sim_.soil().size(); ++p) v += b->eroded_volume(sim_.soil(), p);
+    return sim_.sum_over_ranks(v) + sim_.outflow().shear_eroded_volume;
   }
   long long count(const Particles<Dim>& P) const { return comm_.sum(static_cast<long long>(P.size())); }
 
@@ -421,6 +433,7 @@ class MpmRun {
     summary.set("time_to_peak", p_.outlet.peak_time, "s");
     summary.set("initial_soil_volume", p_.initial_soil_volume, volume);
     summary.set("eroded_soil_volume", eroded_volume(), volume);
+    summary.set("shear_eroded_volume", shear_eroded_volume(), volume);
     summary.set("final_crest_height", crest_height(profile(), floor()), "m");
     mpi::collective_try(comm_, [&] {
       if (comm_.is_root()) summary.write(out_ / "summary.json");
