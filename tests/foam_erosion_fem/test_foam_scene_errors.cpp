@@ -50,6 +50,7 @@ TEST(FoamSceneErrors, EachBadInputNamesItsKeyAndTheFix) {
       {"flow.water.density=0 kg/m^3", {"flow.water.density", "> 0"}},
       {"flow.air.viscosity=-1e-5 m^2/s", {"flow.air.viscosity", "> 0"}},
       {"flow.surface_tension=-0.07 N/m", {"flow.surface_tension", ">= 0"}},
+      {"flow.wall_roughness=-1 mm", {"flow.wall_roughness", ">= 0"}},
       {"time.end=0 s", {"time.end", "> 0"}},
       {"time.write_interval=0.3 s", {"time.write_interval", "does not divide coupling.interval"}},
       {"time.fixed_dt=1 s", {"time.fixed_dt", "longer than coupling.interval"}},
@@ -65,6 +66,10 @@ TEST(FoamSceneErrors, EachBadInputNamesItsKeyAndTheFix) {
     for (const auto& part : parts) EXPECT_NE(what.find(part), std::string::npos) << override_ << ": " << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << override_ << ": one line: " << what;
   }
+  // A rough wall is a wall function's: refused on laminar walls.
+  const std::string laminar = error_of({"flow.turbulence=laminar", "flow.wall_roughness=1.5 mm"});
+  EXPECT_NE(laminar.find("flow.wall_roughness"), std::string::npos) << laminar;
+  EXPECT_NE(laminar.find("kEpsilon"), std::string::npos) << laminar;
 }
 
 }  // namespace

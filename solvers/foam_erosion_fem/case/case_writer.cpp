@@ -107,13 +107,18 @@ void write_initial_fields(const FoamScene& s, const SectionLayout& L, const fs::
     transported("k", "[0 2 -2 0 0 0 0]", t.k, "kqRWallFunction");
     transported("epsilon", "[0 2 -3 0 0 0 0]", t.epsilon, "epsilonWallFunction");
     const std::string calc = "        type            calculated;\n        value           uniform 0;\n";
-    write_case_file(dir, "0/nut",
-                    field_file("volScalarField", "nut", "[0 2 -1 0 0 0 0]", "uniform 0",
-                               {{"inlet", calc},
-                                {"outlet", calc},
-                                {"atmosphere", calc},
-                                {"floor", wall("nutkWallFunction", 0.0)},
-                                {"dam", wall("nutkWallFunction", 0.0)}}));
+    // Smooth walls, or Nikuradse sand of height k_s (Cs 0.5) on the dam and the floor.
+    const std::string nut_wall =
+        s.flow.wall_roughness > 0
+            ? fmt::format(
+                  "        type            nutkRoughWallFunction;\n        Ks              uniform {};\n"
+                  "        Cs              uniform 0.5;\n        value           uniform 0;\n",
+                  num(s.flow.wall_roughness))
+            : wall("nutkWallFunction", 0.0);
+    write_case_file(
+        dir, "0/nut",
+        field_file("volScalarField", "nut", "[0 2 -1 0 0 0 0]", "uniform 0",
+                   {{"inlet", calc}, {"outlet", calc}, {"atmosphere", calc}, {"floor", nut_wall}, {"dam", nut_wall}}));
   }
 }
 

@@ -55,6 +55,11 @@ FlowSettings read_flow(const config::Section& s) {
   f.water = read_fluid(s.section_or_empty("water"), f.water);
   f.air = read_fluid(s.section_or_empty("air"), f.air);
   f.surface_tension = s.quantity("surface_tension", "N/m", f.surface_tension, Range::at_least(0));
+  f.wall_roughness = s.quantity("wall_roughness", "m", 0.0, Range::at_least(0));
+  if (f.wall_roughness > 0 && f.turbulence != "kEpsilon")
+    s.reject("wall_roughness",
+             "a rough wall needs the turbulence model's wall function; set flow.turbulence: kEpsilon "
+             "or leave wall_roughness out (laminar walls are smooth)");
   return f;
 }
 

@@ -13,7 +13,7 @@
 //   domain:    {upstream_length, downstream_length, height}         # height above the foundation
 //   mesh:      {cell_size, far_cell_size, vertical_grading}
 //   flow:      {turbulence: laminar | kEpsilon, water: {density, viscosity},
-//               air: {density, viscosity}, surface_tension}
+//               air: {density, viscosity}, surface_tension, wall_roughness}
 //   time:      {end, max_courant, max_alpha_courant, max_dt, fixed_dt, write_interval}
 //   coupling:  {interval, morphological_factor}
 //   run:       {ranks, decomposition: simple | hierarchical}
@@ -51,6 +51,11 @@ struct FlowSettings {
   Fluid water{1000.0, 1.0e-6};
   Fluid air{1.0, 1.48e-5};
   double surface_tension = 0.07;  // N/m
+  // Equivalent sand-grain roughness k_s of the dam and the floor, m (kEpsilon only). 0: smooth
+  // walls (nutkWallFunction); > 0: nutkRoughWallFunction with Ks = k_s, Cs = 0.5 (Nikuradse's
+  // sand), the wall law a Manning n stands for: k_s = (21.1 n)^6 (Strickler), e.g. n = 0.016
+  // s/m^(1/3) is k_s = 1.5 mm.
+  double wall_roughness = 0.0;
 };
 
 struct TimeSettings {
