@@ -64,7 +64,8 @@ double BedShear<Dim>::side(const Particles<Dim>& soil, std::size_t p) const {
 }
 
 template <int Dim>
-void BedShear<Dim>::measure(const Particles<Dim>& water, const Particles<Dim>& soil, const mpi::Comm* comm) {
+void BedShear<Dim>::measure(const Particles<Dim>& water, const Particles<Dim>& soil, const mpi::Comm* comm,
+                            const std::vector<char>* free) {
   const std::size_t n = columns_.size();
   // The beds: the highest top of each column's bed soil. Each soil particle's column is kept for
   // erode(), which sees the particles where and in the order they are now.
@@ -92,7 +93,7 @@ void BedShear<Dim>::measure(const Particles<Dim>& water, const Particles<Dim>& s
   sums_.assign(n * kSums, 0.0);
   for (std::size_t p = 0; p < water.size(); ++p) {
     const std::size_t c = column_of(water.x[p]);
-    if (!columns_[c].has_bed || !(water.x[p][1] > columns_[c].bed)) continue;
+    if (!columns_[c].has_bed || !(free ? (*free)[p] : water.x[p][1] > columns_[c].bed)) continue;
     double* s = &sums_[c * kSums];
     s[0] += water.volume0[p] * water.J[p];
     s[1] += water.mass[p];
@@ -191,10 +192,10 @@ void BedShear<Dim>::settle(Particles<Dim>& soil, std::size_t p, double dt) const
 }
 
 template <int Dim>
-void BedShear<Dim>::brake(Particles<Dim>& water, double dt) const {
+void BedShear<Dim>::brake(Particles<Dim>& water, double dt, const std::vector<char>* free) const {
   for (std::size_t p = 0; p < water.size(); ++p) {
     const auto& col = columns_[column_of(water.x[p])];
-    if (!(col.depth > 0) || !(water.x[p][1] > col.bed)) continue;
+    if (!(col.depth > 0) || !(free ? (*free)[p] : water.x[p][1] > col.bed)) continue;
     const double speed = col.velocity.norm();
     if (!(speed > 0)) continue;
     const double k = col.shear / (rho_w_ * col.depth * speed);

@@ -16,6 +16,8 @@
 //   flow    the water particles above the bed (y_p > bed; the pore water lies below): their
 //           volume V (V0 J) gives the depth normal to the bed d = V / (h^(Dim-1) secant), their
 //           momentum over mass the mean velocity U, its part along the bed u = U - (U . n) n.
+//           With the free water on its own field (coupling/free_water.hpp) the flow is the
+//           column's free water instead, wherever it lies against the bed.
 //           A film thinner than half a cell (d < h / 2, one particle layer at the default two
 //           particles per cell) is not resolved: the column counts as dry.
 //   shear   tau = rho_w g0 n_M^2 |u|^2 / d^(1/3): Manning's law (SI, wide channel: the hydraulic
@@ -92,13 +94,18 @@ class BedShear {
            ExcessStressSettings erosion, const Vec<Dim>& gravity);
 
   // The columns' beds and flows from the particles as they are (the step's start). COLLECTIVE
-  // over comm (nullptr: one rank): two reductions over the columns.
-  void measure(const Particles<Dim>& water, const Particles<Dim>& soil, const mpi::Comm* comm);
+  // over comm (nullptr: one rank): two reductions over the columns. With `free` (per water
+  // particle, 1 where it is free water: the free-water field's sort, coupling/free_water.hpp) a
+  // column's flow is its free water, wherever it lies against the bed; without it, the water above
+  // the bed.
+  void measure(const Particles<Dim>& water, const Particles<Dim>& soil, const mpi::Comm* comm,
+               const std::vector<char>* free = nullptr);
   // Deposits the suspended soil particles resting on calm beds and erodes the exposed ones by dt
   // (nothing without excess-stress erosion). Right after measure(), on the same particles.
   void erode(Particles<Dim>& soil, double dt) const;
-  // The friction on the water particles above wet beds, over dt.
-  void brake(Particles<Dim>& water, double dt) const;
+  // The friction on the water particles of the wet columns' flows (measure()'s `free` as there),
+  // over dt.
+  void brake(Particles<Dim>& water, double dt, const std::vector<char>* free = nullptr) const;
   // The soil volume the erosion has taken from particle p, m^3 (m^2 per metre in 2D): a detached
   // particle whole (s_p^Dim), another its eroded depth e_p s_p^(Dim-1); 0 once it deposits.
   double eroded_volume(const Particles<Dim>& soil, std::size_t p) const;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "solvers/mpm2grid/coupling/free_water.hpp"
 #include "solvers/mpm2grid/grid/node_tile.hpp"
 #include "solvers/mpm2grid/kernels/vector_clones.hpp"
 #include "solvers/mpm2grid/materials/drucker_prager_return.hpp"
@@ -19,6 +20,19 @@
 #include "solvers/mpm2grid/transfer/stencil_rows.hpp"
 
 namespace suite::mpm2grid {
+namespace {
+
+// The walls with every closed side a slip wall: the soil's shape is folded as its mirror image
+// across each (coupling/free_water.hpp).
+template <int Dim>
+Walls<Dim> mirror_walls(Walls<Dim> walls) {
+  for (auto& sides : walls.kind)
+    for (WallKind& k : sides)
+      if (k != WallKind::open) k = WallKind::slip;
+  return walls;
+}
+
+}  // namespace
 
 template <int Dim>
 Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm)
@@ -27,6 +41,7 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
       water_walls_(settings.walls.for_water()),
       fold_(settings.walls, grid_.spacing(), settings.inlet.has_value()),
       water_fold_(water_walls_, grid_.spacing(), settings.inlet.has_value()),
+      shape_fold_(mirror_walls(settings.walls), grid_.spacing(), false),
       comm_(std::move(comm)) {
   if (s_.inlet) inlet_.emplace(*s_.inlet);
   if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, grid_);
@@ -34,6 +49,8 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
     throw std::invalid_argument("the excess-stress erosion needs the bed shear (a Manning n > 0)");
   if (s_.erosion.on && s_.forces == ForceScheme::implicit_end)
     throw std::invalid_argument("the excess-stress erosion works with the explicit forces");
+  if (s_.free_water_field && (s_.mixture || s_.forces == ForceScheme::implicit_end))
+    throw std::invalid_argument("the free water's own field works without the mixture and with the explicit forces");
   if (s_.bed_shear.on())
     bed_shear_.emplace(s_.walls, s_.h, s_.water.density, s_.soil.density, s_.bed_shear, s_.erosion, s_.gravity);
   if (s_.forces == ForceScheme::implicit_end) {
@@ -110,6 +127,31 @@ void Simulation<Dim>::build_grid() {
   }
   water_nodes_.reset(grid_.nodes());
   soil_nodes_.reset(grid_.nodes());
+  if (s_.free_water_field) free_nodes_.reset(grid_.nodes());
+}
+
+// With the free-water field: the soil's shape on the grid (complete on owned nodes, its fill on
+// ghost nodes too) and which water particles are free (coupling/free_water.hpp).
+template <int Dim>
+void Simulation<Dim>::sort_water() {
+  {
+    auto timed = phase(StepPhase::p2g_soil);
+    shape_nodes_.reset(grid_.nodes());
+    spread_soil_shape(soil_, grid_, shape_fold_, shape_nodes_);
+  }
+  if (dd_) {
+    auto timed = phase(StepPhase::halo_sum);
+    dd_->sum_to_owners(shape_nodes_);
+  }
+  const double per_kg = 1 / (s_.soil.density * std::pow(grid_.spacing(), Dim));
+  soil_fill_.resize(grid_.nodes());
+  for (std::size_t i = 0; i < grid_.nodes(); ++i) soil_fill_[i] = per_kg * shape_nodes_.mass[i];
+  if (dd_) {
+    auto timed = phase(StepPhase::halo_copy);
+    dd_->copy_to_ghosts(soil_fill_);
+  }
+  auto timed = phase(StepPhase::p2g_water);
+  sort_free_water(water_, grid_, soil_fill_, shape_fold_, free_water_);
 }
 
 // The transfers and touch_blocks are compiled for the baseline and for AVX2
@@ -165,19 +207,33 @@ void Simulation<Dim>::particles_to_grids(double dt) {
   // With a FLIP share the same sweep spreads the mass and momentum before the forces.
   NodeFields<Dim>* water_before = s_.water.flip > 0 ? &water_before_ : nullptr;
   NodeFields<Dim>* soil_before = s_.soil.flip > 0 ? &soil_before_ : nullptr;
-  for (NodeFields<Dim>* before : {water_before, soil_before})
+  const bool free = s_.free_water_field;
+  NodeFields<Dim>* free_before = free && s_.water.flip > 0 ? &free_before_ : nullptr;
+  for (NodeFields<Dim>* before : {water_before, soil_before, free_before})
     if (before) before->reset(grid_.nodes());
   {
     auto timed = phase(StepPhase::p2g_water);
-    spread(water_,
-           {.pressure = &water_pressure_, .pressure_force = !implicit, .fold_dt = fold_dt, .walls = &water_fold_,
-            .gravity = s_.gravity, .before = water_before},
-           water_nodes_);
+    // With the free-water field the pore water's particles to water_nodes_, the free ones to
+    // free_nodes_.
+    P2GSources<Dim> water{.pressure = &water_pressure_,
+                          .pressure_force = !implicit,
+                          .fold_dt = fold_dt,
+                          .walls = &water_fold_,
+                          .gravity = s_.gravity,
+                          .before = water_before};
+    if (free) water.subset = {&free_water_, 0};
+    spread(water_, water, water_nodes_);
+    if (free) {
+      water.before = free_before, water.subset = {&free_water_, 1};
+      spread(water_, water, free_nodes_);
+    }
   }
   if (dd_) {
     auto timed = phase(StepPhase::halo_sum);
     dd_->sum_to_owners(water_nodes_);
     if (water_before) dd_->sum_to_owners(*water_before);
+    if (free) dd_->sum_to_owners(free_nodes_);
+    if (free_before) dd_->sum_to_owners(*free_before);
   }
   P2GSources<Dim> soil{.tau = implicit ? nullptr : &soil_tau_,
                        .drag = &soil_drag_,
@@ -186,8 +242,12 @@ void Simulation<Dim>::particles_to_grids(double dt) {
                        .gravity = s_.gravity,
                        .before = soil_before};
   if (s_.buoyancy) {
+    // The node pressures of all the water, free and pore.
     auto& p = water_nodes_.pressure;
-    for (std::size_t i = 0; i < grid_.nodes(); ++i) p[i] = water_nodes_.mass[i] > 0 ? p[i] / water_nodes_.mass[i] : 0.0;
+    for (std::size_t i = 0; i < grid_.nodes(); ++i) {
+      const double m = water_nodes_.mass[i] + (free ? free_nodes_.mass[i] : 0.0);
+      p[i] = m > 0 ? (p[i] + (free ? free_nodes_.pressure[i] : 0.0)) / m : 0.0;
+    }
     if (dd_) {
       auto timed = phase(StepPhase::halo_sum);
       dd_->copy_to_ghosts(p);
@@ -206,6 +266,7 @@ void Simulation<Dim>::particles_to_grids(double dt) {
     if (soil_before) dd_->sum_to_owners(*soil_before);
   }
   if (water_before) velocities_before(StepPhase::p2g_water, *water_before);
+  if (free_before) velocities_before(StepPhase::p2g_water, *free_before);
   if (soil_before) velocities_before(StepPhase::p2g_soil, *soil_before);
 }
 
@@ -215,12 +276,18 @@ void Simulation<Dim>::step(double dt) {
     auto timed = phase(StepPhase::balance);
     if (dd_->balance(steps_, water_, soil_)) keep_known_stresses();
   }
-  if (bed_shear_) {
+  const auto bed_shear = [&](const std::vector<char>* free) {
+    if (!bed_shear_) return;
     auto timed = phase(StepPhase::bed_shear);
-    bed_shear_->measure(water_, soil_, dd_ ? &dd_->comm() : nullptr);
+    bed_shear_->measure(water_, soil_, dd_ ? &dd_->comm() : nullptr, free);
     bed_shear_->erode(soil_, dt);
-  }
+  };
+  if (!s_.free_water_field) bed_shear(nullptr);
   build_grid();
+  // With the free-water field its sort comes before the bed shear, where a column's flow is its
+  // free water (the erosion leaves the soil's masses and positions, which the sort reads, as they
+  // are).
+  if (s_.free_water_field) sort_water(), bed_shear(&free_water_);
   {
     auto timed = phase(StepPhase::stresses);
     stresses();
@@ -237,10 +304,15 @@ void Simulation<Dim>::step(double dt) {
     water_walls_.apply(grid_, water_nodes_);
     s_.walls.apply(grid_, soil_nodes_);
     if (inlet_) inlet_->impose(grid_, water_nodes_, t_next);
+    if (s_.free_water_field) {
+      water_walls_.apply(grid_, free_nodes_);
+      if (inlet_) inlet_->impose(grid_, free_nodes_, t_next);
+    }
   }
   if (dd_) {
     auto timed = phase(StepPhase::halo_copy);
     dd_->copy_to_ghosts(soil_nodes_, water_nodes_);
+    if (s_.free_water_field) dd_->copy_to_ghosts(free_nodes_, free_nodes_);  // velocity and mass
   }
   update_particles(dt);
   {
@@ -276,17 +348,31 @@ void Simulation<Dim>::solve_grid(double dt) {
   if (newton_) return solve_grid_implicit(dt);
   if (!consistent_) {
     solve_grid_velocities(soil_nodes_, water_nodes_, dt, s_.drag);
+    free_water_velocities(dt);
     return;
   }
   if (!dd_) {
     const auto numbering = NodeNumbering::own_all(*comm_, soil_nodes_, water_nodes_);
     drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering);
+    free_water_velocities(dt);
     return;
   }
   // Owners number their coupled nodes; the ghost copies learn the owners' numbers.
   auto numbering = NodeNumbering::own_blocks(*comm_, soil_nodes_, water_nodes_, dd_->owned_blocks());
   dd_->copy_to_ghosts(numbering.global);
   drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering);
+  free_water_velocities(dt);
+}
+
+// With the free-water field: its velocities (no drag), then its contact with the mixture.
+template <int Dim>
+void Simulation<Dim>::free_water_velocities(double dt) {
+  if (!s_.free_water_field) return;
+  auto& f = free_nodes_;
+  for (std::size_t i = 0; i < grid_.nodes(); ++i)
+    f.velocity[i] = f.mass[i] > 0 ? Vec<Dim>((f.momentum[i] + dt * f.force[i]) / f.mass[i]) : Vec<Dim>::Zero();
+  const double free_per_kg = 1 / (s_.water.density * std::pow(grid_.spacing(), Dim));
+  free_water_contact(shape_nodes_, soil_fill_, free_per_kg, soil_nodes_, water_nodes_, free_nodes_);
 }
 
 // The soil particles' loads on the soil grid, scaled by the ramp at the step's start.
@@ -389,12 +475,21 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
   if (s_.mixture) {
     grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
                                                    [](std::size_t) {}, flip);
-  } else {
-    divergence_.resize(water_.size());
-    grid_to_particles_each<VelocityGradient::divergence>(
-        water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
-        [&](std::size_t p, double div) { divergence_[p] = div; }, flip);
+    return;
   }
+  divergence_.resize(water_.size());
+  const auto keep = [&](std::size_t p, double div) { divergence_[p] = div; };
+  if (!s_.free_water_field) {
+    grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
+                                                         keep, flip);
+    return;
+  }
+  // The pore water from its field, the free water from its own.
+  grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
+                                                       keep, flip, {&free_water_, 0});
+  const FlipBlend<Dim> free_flip{s_.water.flip > 0 ? &free_before_ : nullptr, s_.water.flip};
+  grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, free_nodes_, nullptr, nullptr, &water_fold_, keep,
+                                                       free_flip, {&free_water_, 1});
 }
 
 // probe_.v and probe_.C: the velocity and APIC matrix of `nodes` at the points probe_.x.
@@ -413,6 +508,8 @@ void Simulation<Dim>::sample(const NodeFields<Dim>& nodes, const WallFold<Dim>& 
 template <int Dim>
 void Simulation<Dim>::wall_water_fill() {
   water_fill_ = water_nodes_.mass;
+  if (s_.free_water_field)
+    for (std::size_t i = 0; i < water_fill_.size(); ++i) water_fill_[i] += free_nodes_.mass[i];
   constexpr int kSide = BlockGrid<Dim>::kSide;
   const double h = grid_.spacing(), reach = 2 * h;
   std::vector<std::size_t> near_blocks;
@@ -459,7 +556,7 @@ void Simulation<Dim>::carry_suspended() {
   for (std::size_t p = 0; p < soil_.size(); ++p)
     if (bed_shear_->suspended(soil_, p)) carried.push_back(p), probe_.x.push_back(soil_.x[p]);
   if (carried.empty()) return;
-  sample(water_nodes_, water_fold_);
+  sample(s_.free_water_field ? free_nodes_ : water_nodes_, water_fold_);  // the flow's
   for (std::size_t k = 0; k < carried.size(); ++k) soil_.v[carried[k]] = probe_.v[k], soil_.C[carried[k]] = probe_.C[k];
 }
 
@@ -495,7 +592,7 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   water_velocities();
   if (bed_shear_) {
     timed.emplace(times_, StepPhase::bed_shear, wait_clock());
-    bed_shear_->brake(water_, dt);
+    bed_shear_->brake(water_, dt, s_.free_water_field ? &free_water_ : nullptr);
     timed.emplace(times_, StepPhase::g2p_water, wait_clock());
   }
   if (s_.mixture) mixture_volume_rates(dt);  // at the positions the water was spread from

@@ -90,6 +90,10 @@ struct SimulationSettings {
   DecompositionSettings decomposition;      // load checks and rebalancing over several ranks
   bool buoyancy = true;                     // the water's pressure acts on the soil skeleton
   bool mixture = false;                     // the pore water's volume balance counts the soil's
+  // The water outside the soil on a grid field of its own, met by the soil in a no-penetration
+  // contact; the drag acts on the pore water alone (coupling/free_water.hpp). Not with the
+  // mixture or the implicit forces.
+  bool free_water_field = false;
   bool loads = false;                       // some soil particles carry loads
   double load_ramp = 0;                     // s over which the loads grow to full (0: at once)
 };
@@ -212,6 +216,8 @@ class Simulation {
   void wall_water_fill();
   void soil_velocities();
   void carry_suspended();
+  void sort_water();
+  void free_water_velocities(double dt);
   void sample(const NodeFields<Dim>& nodes, const WallFold<Dim>& walls);
   void record_homes(const Particles<Dim>& P);
   void mark_moved(const Particles<Dim>& P, std::vector<char>& left) const;
@@ -225,7 +231,14 @@ class Simulation {
   Walls<Dim> water_walls_;    // the walls as the water sees them (Walls::for_water())
   WallFold<Dim> fold_;        // the walls' mirror condition in the soil's transfers
   WallFold<Dim> water_fold_;  // and in the water's
+  WallFold<Dim> shape_fold_;  // and in the soil's shape for the free water (coupling/free_water.hpp)
   NodeFields<Dim> water_nodes_, soil_nodes_;
+  // With the free-water field: the free water's nodes (water_nodes_ then holds the pore water's),
+  // its velocities before the forces (a FLIP share), the soil's shape (mass and offsets), the
+  // soil's fill per slot, and per water particle 1 where it is free.
+  NodeFields<Dim> free_nodes_, free_before_, shape_nodes_;
+  std::vector<double> soil_fill_;
+  std::vector<char> free_water_;
   // With a FLIP share: each species' node velocities from its particles before the step's forces
   // (the mass and momentum its P2G spreads beside the forces), which G2P blends in
   // (transfer/apic.hpp, FlipBlend). probe_:

@@ -14,6 +14,14 @@ namespace suite::mpm2grid {
 // A soil particle's eroded depth that marks it detached from the bed (erosion/bed_shear.hpp).
 inline bool is_suspended(double eroded) { return eroded == std::numeric_limits<double>::infinity(); }
 
+// Some particles of a species: those p with (*flags)[p] == value; all of them without flags (the
+// free and the pore water, Simulation's free_water_field).
+struct ParticleSubset {
+  const std::vector<char>* flags = nullptr;
+  char value = 1;
+  bool has(std::size_t p) const { return !flags || (*flags)[p] == value; }
+};
+
 template <int Dim>
 struct Particles {
   std::vector<Vec<Dim>> x;         // position, m

@@ -232,6 +232,12 @@ Scene<Dim> read_scene(const config::Config& cfg) {
   if (sim.mixture && !sim.buoyancy && root.has("water") && root.has("soil"))
     root.reject("mixture", "the mixture's pore pressure acts on the skeleton through the buoyancy; drop buoyancy: false "
                            "or mixture: true");
+  // The free water on a field of its own, in contact with the soil (coupling/free_water.hpp).
+  sim.free_water_field = root.get<bool>("free_water_field", false);
+  if (sim.free_water_field && sim.mixture)
+    root.reject("free_water_field",
+                "the mixture's pore water shares its field with the free water; drop mixture: true "
+                "or free_water_field: true");
   const auto drag = root.choice("drag", {"lumped", "consistent", "explicit"}, "lumped");
   sim.drag = drag == "lumped" ? DragScheme::lumped : drag == "consistent" ? DragScheme::consistent
                                                                           : DragScheme::explicit_euler;
@@ -245,6 +251,10 @@ Scene<Dim> read_scene(const config::Config& cfg) {
                                         drag));
     if (sim.mixture) root.reject("forces", "the implicit forces do not include the mixture; drop mixture: true or set "
                                            "forces: explicit");
+    if (sim.free_water_field)
+      root.reject("forces",
+                  "the implicit forces do not include the free water's own field; drop free_water_field: "
+                  "true or set forces: explicit");
     if (sim.erosion.on)
       root.reject("forces", "the implicit forces do not include the excess-stress erosion; set forces: explicit or "
                             "soil.erosion: saturation_cohesion");

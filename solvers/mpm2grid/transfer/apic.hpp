@@ -103,6 +103,8 @@ struct P2GSources {
   // before->mass and before->momentum (reset by the caller) in the same sweep. With fold_dt > 0
   // the forces are then kept apart in the tile and folded into nodes.momentum as it is added.
   NodeFields<Dim>* before = nullptr;
+  // Only these particles (the free or the pore water); all by default.
+  ParticleSubset subset = {};
 };
 
 namespace detail {
@@ -159,14 +161,18 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
     });
   };
   Mat<Dim> S = Mat<Dim>::Zero();
-  sweep_groups(P.x, grid, *tile, enter, leave, [&](std::size_t p, const StencilRows<Dim>& s, int first) {
-    if constexpr (Form == StressForm::full) S = P.volume0[p] * (*in.tau)[p];
-    if constexpr (Form == StressForm::isotropic) S(0, 0) = -P.volume0[p] * P.J[p] * (*in.pressure)[p];
-    Vec<Dim> g = P.mass[p] * in.gravity;
-    if (in.node_pressure) g -= (*in.solid_volume)[p] * sample_field<false, kAllAxes>(*tile, kRead, s, first).gradient;
-    const double e = !extra ? 0.0 : in.drag ? (*in.drag)[p] : P.mass[p] * (*in.pressure)[p];
-    scatter_apic<Form, Fold>(*tile, s, first, P.mass[p], P.v[p], P.C[p], S, g, in.fold_dt, extra ? kExtra : -1, e);
-  });
+  sweep_groups(
+      P.x, grid, *tile, enter, leave,
+      [&](std::size_t p, const StencilRows<Dim>& s, int first) {
+        if constexpr (Form == StressForm::full) S = P.volume0[p] * (*in.tau)[p];
+        if constexpr (Form == StressForm::isotropic) S(0, 0) = -P.volume0[p] * P.J[p] * (*in.pressure)[p];
+        Vec<Dim> g = P.mass[p] * in.gravity;
+        if (in.node_pressure)
+          g -= (*in.solid_volume)[p] * sample_field<false, kAllAxes>(*tile, kRead, s, first).gradient;
+        const double e = !extra ? 0.0 : in.drag ? (*in.drag)[p] : P.mass[p] * (*in.pressure)[p];
+        scatter_apic<Form, Fold>(*tile, s, first, P.mass[p], P.v[p], P.C[p], S, g, in.fold_dt, extra ? kExtra : -1, e);
+      },
+      in.subset);
 }
 
 template <bool Fold, int Dim>
@@ -227,7 +233,7 @@ constexpr Axes no_gradient(int) {
 template <VelocityGradient Gradient, bool Blend, int Dim, class Each>
 void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
                        const std::vector<double>* field, std::vector<double>* at_particles, const WallFold<Dim>* walls,
-                       Each&& each, const FlipBlend<Dim>& flip) {
+                       Each&& each, const FlipBlend<Dim>& flip, const ParticleSubset& subset) {
   // Velocity, the sampled field, and with the blend the velocity before the forces.
   constexpr int kFields = Blend ? 2 * Dim + 1 : Dim + 1;
   using Tile = NodeTile<Dim, kFields>;
@@ -290,7 +296,8 @@ void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const Node
           each(p, grad_v.trace());  // summed as the full gradient's trace
         else
           each(p);
-      });
+      },
+      subset);
 }
 
 }  // namespace detail
@@ -299,17 +306,18 @@ void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const Node
 // `at_particles` (resized; the soil's saturation from the water's node masses), then
 // each(p, grad v_p) (full), each(p, div v_p) (divergence) or each(p) (none) for the caller to
 // keep what it needs. With `walls`, the nodes beyond the walls are read as their mirrors
-// (boundary/wall_fold.hpp); with `flip.before`, v_p is blended with FLIP (FlipBlend).
+// (boundary/wall_fold.hpp); with `flip.before`, v_p is blended with FLIP (FlipBlend). Only the
+// particles of `subset` are visited.
 template <VelocityGradient Gradient, int Dim, class Each>
 void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
                             const std::vector<double>* field, std::vector<double>* at_particles,
                             const std::type_identity_t<WallFold<Dim>>* walls, Each&& each,
-                            const FlipBlend<Dim>& flip = {}) {
+                            const FlipBlend<Dim>& flip = {}, const ParticleSubset& subset = {}) {
   if (!field != !at_particles) throw std::invalid_argument("grid_to_particles: a field to sample needs its output");
   if (flip.before)
-    detail::grid_to_particles<Gradient, true>(P, grid, nodes, field, at_particles, walls, each, flip);
+    detail::grid_to_particles<Gradient, true>(P, grid, nodes, field, at_particles, walls, each, flip, subset);
   else
-    detail::grid_to_particles<Gradient, false>(P, grid, nodes, field, at_particles, walls, each, flip);
+    detail::grid_to_particles<Gradient, false>(P, grid, nodes, field, at_particles, walls, each, flip, subset);
 }
 
 // Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized), and,

@@ -16,6 +16,7 @@
 
 #include "solvers/mpm2grid/grid/node_tile.hpp"
 #include "solvers/mpm2grid/kernels/bspline.hpp"
+#include "solvers/mpm2grid/particles/particles.hpp"
 
 namespace suite::mpm2grid {
 
@@ -341,17 +342,19 @@ void scatter_apic(NodeTile<Dim, Fields>& tile, const StencilRows<Dim>& s, int fi
   }
 }
 
-// Calls body(p, rows, first) for the particles at x in order, with `tile` covering each one's
-// group: where the group changes, leave() is called for the old group (if any) and enter() after
-// the tile covers the new one; leave() once more at the end. Particles in group order (transfer/
-// particle_order.hpp) make one enter/leave per group.
+// Calls body(p, rows, first) for the particles at x in order (those of `subset` only), with
+// `tile` covering each one's group: where the group changes, leave() is called for the old group
+// (if any) and enter() after the tile covers the new one; leave() once more at the end. Particles
+// in group order (transfer/particle_order.hpp) make one enter/leave per group; groups without a
+// particle of the subset are not entered.
 template <int Dim, int Fields, class Enter, class Leave, class Body>
 void sweep_groups(const std::vector<Vec<Dim>>& x, const BlockGrid<Dim>& grid, NodeTile<Dim, Fields>& tile,
-                  Enter&& enter, Leave&& leave, Body&& body) {
+                  Enter&& enter, Leave&& leave, Body&& body, const ParticleSubset& subset = {}) {
   using Tile = NodeTile<Dim, Fields>;
   const double h = grid.spacing();
   tile.release();
   for (std::size_t p = 0; p < x.size(); ++p) {
+    if (!subset.has(p)) continue;
     const StencilRows<Dim> s(x[p], h);
     const Index<Dim> g = Tile::group_of(s.base);
     if (!tile.covers(g)) {
