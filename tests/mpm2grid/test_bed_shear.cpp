@@ -310,6 +310,9 @@ TEST(BedShear, CohesiveBedErodesAtTheExcessStressRate) {
     std::printf("S = %g: eroded volume %.6f m^2, columns' kd (tau - tau_c) integrated %.6f m^2, deposited %.6f m^2\n",
                 slope, taken, expected_volume, deposited);
     EXPECT_NEAR(taken / (expected_volume - deposited), 1.0, 0.002);
+    // The gross counter is that integral itself (summed per step first): equal to round-off.
+    EXPECT_NEAR(sim.outflow().law_eroded_volume / expected_volume, 1.0, 1e-9);
+    EXPECT_GT(sim.outflow().law_eroded_volume, 0.0);
   }
 }
 
@@ -323,6 +326,7 @@ TEST(BedShear, NothingErodesBelowTheCriticalStress) {
   while (sim.time() < 0.5) sim.step(std::min(sim.stable_dt().dt, 0.5 - sim.time()));
   EXPECT_GT(sim.bed_shear()->largest_shear(), 5.0);
   for (std::size_t p = 0; p < sim.soil().size(); ++p) ASSERT_EQ(sim.soil().eroded[p], 0.0) << "particle " << p;
+  EXPECT_EQ(sim.outflow().law_eroded_volume, 0.0);
 }
 
 }  // namespace

@@ -157,9 +157,13 @@ bool BedShear<Dim>::in_top_layer(const Particles<Dim>& soil, std::size_t p) cons
 }
 
 template <int Dim>
-void BedShear<Dim>::erode(Particles<Dim>& soil, double dt) const {
-  if (!erosion_.on) return;
+double BedShear<Dim>::erode(Particles<Dim>& soil, double dt) const {
+  if (!erosion_.on) return 0;
   const double area = std::pow(h_, Dim - 1);  // a column's cross-section
+  double taken = 0;
+  for (const auto& col : columns_)
+    if (col.depth > 0 && col.top_layer > 0 && col.shear > erosion_.tau_c)
+      taken += dt * erosion_.kd * (col.shear - erosion_.tau_c) * col.secant * area;
   for (std::size_t p = 0; p < soil.size(); ++p) {
     const auto& col = columns_[soil_column_[p]];
     if (!col.has_bed) continue;
@@ -179,6 +183,7 @@ void BedShear<Dim>::erode(Particles<Dim>& soil, double dt) const {
       soil.log_jp[p] = 0;
     }
   }
+  return taken;
 }
 
 template <int Dim>

@@ -101,8 +101,11 @@ class BedShear {
   void measure(const Particles<Dim>& water, const Particles<Dim>& soil, const mpi::Comm* comm,
                const std::vector<char>* free = nullptr);
   // Deposits the suspended soil particles resting on calm beds and erodes the exposed ones by dt
-  // (nothing without excess-stress erosion). Right after measure(), on the same particles.
-  void erode(Particles<Dim>& soil, double dt) const;
+  // (nothing without excess-stress erosion). Right after measure(), on the same particles. Returns
+  // the volume the law took over the step, m^3 (m^2 per metre in 2D): the sum over the columns with
+  // a top layer under an eroding flow of dt kd (tau - tau_c) secant h^(Dim-1), the same on every
+  // rank (the columns are).
+  double erode(Particles<Dim>& soil, double dt) const;
   // The friction on the water particles of the wet columns' flows (measure()'s `free` as there),
   // over dt.
   void brake(Particles<Dim>& water, double dt, const std::vector<char>* free = nullptr) const;

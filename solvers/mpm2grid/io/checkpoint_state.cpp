@@ -88,6 +88,7 @@ void write_state(checkpoint::Writer& w, const Simulation<Dim>& sim, const RunPro
   for (int d = 0; d < Dim; ++d) scalars.push_back(o.momentum[d]);
   scalars.push_back(progress.dt_cap);
   scalars.push_back(o.shear_eroded_volume);
+  scalars.push_back(o.law_eroded_volume);
   w.write<double>("run/scalars", scalars);
   std::vector<long long> counters{sim.steps(), progress.files, inlet.layers, sim.water().next_id, sim.soil().next_id};
   w.write<long long>("run/counters", counters);
@@ -106,11 +107,12 @@ void read_state(checkpoint::Reader& r, Simulation<Dim>& sim, RunProgress& progre
   read_species(r, "soil", sim.soil());
   const auto scalars = r.read<double>("run/scalars");
   const auto counters = r.read<long long>("run/counters");
-  if (scalars.size() < kScalars + Dim || scalars.size() > kScalars + Dim + 2 || counters.size() != 5)
+  if (scalars.size() < kScalars + Dim || scalars.size() > kScalars + Dim + 3 || counters.size() != 5)
     throw LibraryError("checkpoint run record has another layout than this build's");
   Outflow<Dim> o;
   o.water_mass = scalars[1], o.soil_mass = scalars[2];
   o.shear_eroded_volume = scalars.size() > kScalars + Dim + 1 ? scalars[kScalars + Dim + 1] : 0.0;
+  o.law_eroded_volume = scalars.size() > kScalars + Dim + 2 ? scalars[kScalars + Dim + 2] : 0.0;  // older: 0
   for (int d = 0; d < Dim; ++d) o.momentum[d] = scalars[kScalars + d];
   const InletState inlet{scalars[12], counters[2], scalars[13]};
   sim.restore(scalars[0], counters[0], o, inlet);

@@ -280,7 +280,7 @@ void Simulation<Dim>::step(double dt) {
     if (!bed_shear_) return;
     auto timed = phase(StepPhase::bed_shear);
     bed_shear_->measure(water_, soil_, dd_ ? &dd_->comm() : nullptr, free);
-    bed_shear_->erode(soil_, dt);
+    outflow_.law_eroded_volume += bed_shear_->erode(soil_, dt);
   };
   if (!s_.free_water_field) bed_shear(nullptr);
   build_grid();

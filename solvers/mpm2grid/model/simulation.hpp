@@ -116,6 +116,10 @@ template <int Dim>
 struct Outflow {
   double water_mass = 0, soil_mass = 0;  // kg that left through open sides
   double shear_eroded_volume = 0;        // m^3 of it the excess-stress erosion had taken (BedShear::eroded_volume)
+  // m^3 the excess-stress law took from the beds over the run (BedShear::erode()'s sums), gross of
+  // the deposits: what a model without deposition (breach, foam-erosion) erodes. The same on every
+  // rank. (Kept with the outflow record: both are the run's checkpointed sums.)
+  double law_eroded_volume = 0;
   Vec<Dim> momentum = Vec<Dim>::Zero();  // their momentum when they left
 };
 

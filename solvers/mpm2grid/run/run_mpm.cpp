@@ -60,7 +60,8 @@ std::vector<io::CsvColumn> series_columns() {
           {"soil_particles", ""},
           {"bed_shear_max", "Pa"},  // the bed-shear closure's largest shear at the last step's start (0 without it)
           {"suspended_soil_volume", volume},  // as placed, of the soil the excess-stress erosion detached
-          {"shear_eroded_volume", volume}};   // what the excess-stress erosion took (shear_eroded_volume())
+          {"shear_eroded_volume", volume},    // what the excess-stress erosion took (shear_eroded_volume())
+          {"law_eroded_volume", volume}};     // what its law took, gross of deposits (Outflow::law_eroded_volume)
 }
 
 // profiles.csv: the crest profile (io/dam_measures.hpp) at every particle output time.
@@ -323,7 +324,8 @@ class MpmRun {
                                   static_cast<double>(count(sim_.soil())),
                                   sim_.bed_shear() ? sim_.bed_shear()->largest_shear() : 0.0,
                                   suspended_volume(),
-                                  shear_eroded_volume()};
+                                  shear_eroded_volume(),
+                                  out.law_eroded_volume};
     if (csv_) csv_->append(row);
   }
 
@@ -434,6 +436,7 @@ class MpmRun {
     summary.set("initial_soil_volume", p_.initial_soil_volume, volume);
     summary.set("eroded_soil_volume", eroded_volume(), volume);
     summary.set("shear_eroded_volume", shear_eroded_volume(), volume);
+    summary.set("law_eroded_volume", sim_.outflow().law_eroded_volume, volume);
     summary.set("final_crest_height", crest_height(profile(), floor()), "m");
     mpi::collective_try(comm_, [&] {
       if (comm_.is_root()) summary.write(out_ / "summary.json");
