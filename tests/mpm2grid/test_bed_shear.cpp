@@ -186,12 +186,12 @@ TEST(BedShear, UniformFlowDownARoughInclineIn3D) {
 // shear), with the free water on its own field (coupling/free_water.hpp): the drag locks only the
 // pore water to the soil, and the free water slides along the soil's surface, braked by the
 // closure alone. The flow then is Manning's: depth and speed within 5% at each resolution
-// (measured -2.4 / -2.1 / -0.9% and +3.2 / +2.0 / +1.4% at h = 0.04 / 0.02 / 0.01 m). The closure's
-// shear exceeds rho g d S by 10.1 / 7.0 / 4.1%: the contact's free water rests on the soil's
-// kernel tails within a fraction of a cell (its kTouching), which the resolution sets; the bound
-// is 12% and the excess must fall as h falls. With the free water in the pore water's field
-// (the old interface) the flow crawled: speed 0.578 / 0.973 / 1.133 m/s against 1.721, shear
-// 2.1 / 6.6 / 9.2 Pa against 50.0 / 36.9 / 33.3 Pa.
+// (measured -3.4 / -0.9 / 0.0% and +2.5 / +0.8 / -0.0% at h = 0.04 / 0.02 / 0.01 m). The closure's
+// shear exceeds rho g d S by 10.2 / 2.9 / -0.04%: the contact's free water rests on the soil within
+// a fraction of a cell (its kTouching), which the resolution sets; the bound is 12% and the excess
+// must fall as h falls. With the free water in the pore water's field (the old interface) the flow
+// crawled: speed 0.578 / 0.973 / 1.133 m/s against 1.721, shear 2.1 / 6.6 / 9.2 Pa against 50.0 /
+// 36.9 / 33.3 Pa.
 TEST(BedShear, UniformFlowOverAFirmSoilBed) {
   double excess_before = 1;
   for (double h : {0.04, 0.02, 0.01}) {

@@ -95,6 +95,12 @@ MemoryEstimate estimate_memory(const Scene<Dim>& sc) {
     e.bytes += e.nodes / 2 * kNodeBytes<Dim> / 2 + e.water_particles * (3 * Dim + Dim * Dim) * sizeof(double);
   if (sc.simulation.soil.flip > 0)
     e.bytes += e.nodes / 2 * kNodeBytes<Dim> / 2 + e.soil_particles * (3 * Dim + Dim * Dim) * sizeof(double);
+  // The free water's own field: its node fields (and before the forces with a FLIP share) and
+  // the soil's shape, each one species' share of the nodes, the soil's fill per node, a flag per
+  // water particle.
+  if (sc.simulation.free_water_field)
+    e.bytes += e.nodes / 2 * kNodeBytes<Dim> / 2 * (sc.simulation.water.flip > 0 ? 3 : 2) +
+               e.nodes / 2 * sizeof(double) + e.water_particles;
   // Implicit forces: per particle a mass-free probe (position, velocity, C, mass, volume, J), the
   // trial pressure and J (water) or trial F and stress (soil); per node (each species' nodes counted) a
   // second set of node fields for the forces and PETSc's vectors of Dim unknowns: the solution,
