@@ -11,9 +11,12 @@ Per metre of crest (the 2D section; every run here has a 1 m crest):
   crest     mpm2grid: the highest soil surface (detached soil left out); foam-erosion: the
             highest node of the eroded dam curve; breach: the breach invert
   eroded    what the excess-stress law kd (tau - tau_c) took from the bed. mpm2grid:
-            shear_eroded_volume (the detached particles whole and the top layer's eroded depth,
-            net of deposits); foam-erosion: the area between the initial and the eroded curve;
+            law_eroded_volume (the columns' dt kd (tau - tau_c) sec h over the run, gross of
+            deposits, as the other two erode), or in runs older than that column
+            shear_eroded_volume; foam-erosion: the area between the initial and the eroded curve;
             breach: its eroded volume over the 1 m crest
+  net       mpm2grid only: shear_eroded_volume (the detached particles whole and the top
+            layer's eroded depth, net of deposits)
   outline   mpm2grid only: the soil no longer within the dam's seeded outline (grown by half a
             particle spacing), eroded_soil_volume: what the flow carried or pushed off the dam by
             any means (erosion, the drag on the surface soil, sliding)
@@ -53,7 +56,8 @@ def mpm_run(run):
         "t": [float(r["time [s]"]) for r in s],
         "outflow": [float(r["outflow_water_discharge [m^2/s]"]) for r in s],
         "crest": [float(r["crest_height [m]"]) for r in s],
-        "eroded": [float(r["shear_eroded_volume [m^2]"]) for r in s],
+        "eroded": [float(r.get("law_eroded_volume [m^2]", r["shear_eroded_volume [m^2]"])) for r in s],
+        "net": [float(r["shear_eroded_volume [m^2]"]) for r in s],
         "outline": [float(r["eroded_soil_volume [m^2]"]) for r in s],
         "shear": [float(r["bed_shear_max [Pa]"]) for r in s],
     }
@@ -176,23 +180,26 @@ def main():
     fig.tight_layout()
     fig.savefig(a.out, dpi=120)
 
-    header = ["solver", "resolution", "wall_time_s", "eroded_m2", "eroded_at_10s_m2", "out_of_outline_m2", "final_crest_m",
-              "peak_outflow_1s_mean_m2_s", "outflow_volume_m2", "outflow_starts_s", "largest_shear_Pa"]
+    header = ["solver", "resolution", "wall_time_s", "eroded_m2", "eroded_at_10s_m2", "net_of_deposits_m2",
+              "out_of_outline_m2", "final_crest_m", "peak_outflow_1s_mean_m2_s", "outflow_volume_m2", "outflow_starts_s",
+              "largest_shear_Pa"]
     table = []
     for r in runs:
         te, er = r.get("eroded_t", r["t"]), r["eroded"]
         at10 = next((e for t, e in zip(te, er) if t >= 10 - 1e-9), float("nan"))
         table.append([r["solver"] + (f" ({r['stage']})" if "stage" in r else ""), r["resolution"], r["wall_s"],
-                      er[-1], at10, r["outline"][-1] if "outline" in r else float("nan"), r["crest"][-1],
+                      er[-1], at10, r["net"][-1] if "net" in r else float("nan"),
+                      r["outline"][-1] if "outline" in r else float("nan"), r["crest"][-1],
                       peak_mean(r["t"], r["outflow"]), integral(r["t"], r["outflow"]),
                       first_time(r["t"], r["outflow"], 0.01 * inflow), max(r["shear"])])
     with open(a.csv, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(header)
         w.writerows(table)
-    print("| solver | resolution | wall time (s) | eroded by the shear (m^2/m) | at 10 s | out of the outline | final crest (m) | "
-          "peak outflow, 1 s mean (m^2/s) | outflow volume (m^2/m) | outflow > 1% of inflow from (s) | largest bed shear (Pa) |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| solver | resolution | wall time (s) | eroded by the shear (m^2/m) | at 10 s | net of deposits | "
+          "out of the outline | final crest (m) | peak outflow, 1 s mean (m^2/s) | outflow volume (m^2/m) | "
+          "outflow > 1% of inflow from (s) | largest bed shear (Pa) |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for row in table:
         print("| " + " | ".join([row[0], row[1], "-" if row[2] != row[2] else f"{row[2]:.0f}"] +
                                 ["-" if v != v else f"{v:.3g}" for v in row[3:]]) + " |")

@@ -16,12 +16,15 @@
 # Nikuradse sand k_s = (21.1 n)^6. plot_three_solvers.py puts the outflow hydrographs, the crest
 # (breach invert) and the eroded volume of every run of a scene on one chart and writes its table.
 #   benchmarks/dam_three_solvers/run_three_solvers.sh [BUILD_DIR]
-#   env: SCENES ("example2 05_hr_a"), SPACINGS ("0.25 0.125 0.0625"), CONSISTENT ("0.125"),
+#   env: SCENES ("example2 05_hr_a"), SPACINGS ("0.25 0.125 0.0625"), CONSISTENT ("0.125") (empty: none),
 #        CELLS ("0.25 0.125"), END (20 s),
 #        KD (100 cm^3/(N s)), TAU_C (1 Pa), MANNING (0.016), SETTLING (0.02 m/s),
 #        OUT (benchmarks/results/dam_three_solvers), WORK (the runs' folders, kept: $OUT/runs; a
 #        run whose folder holds a finished summary.json is not run again, so a long study can be
-#        run in parts; remove WORK to rerun)
+#        run in parts; remove WORK to rerun), MPM_ARGS (more key=value overrides for the mpm2grid
+#        runs, separated by ';') and NAME (appended to the mpm2grid runs' folders and the outputs'
+#        names): the free water on its own field (docs/methods/mpm2grid.md, "Free water and pore
+#        water") is MPM_ARGS=free_water_field=true NAME=_free_water
 # Wall time on 2 cores, per scene: foam-erosion 40 s at 0.25 m, about 4 min at 0.125 m;
 # mpm2grid about 1 / 10 / 55 min at 0.25 / 0.125 / 0.0625 m, the consistent drag at 0.125 m about
 # 30 min (runs sharing the cores); two scenes run side by side with SCENES=example2 and SCENES=05_hr_a.
@@ -29,9 +32,11 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$root/build/release}
 here=$root/benchmarks/dam_three_solvers
-scenes=${SCENES:-example2 05_hr_a} spacings=${SPACINGS:-0.25 0.125 0.0625} cells=${CELLS:-0.25 0.125} end=${END:-20}
+scenes=${SCENES:-example2 05_hr_a} spacings=${SPACINGS-0.25 0.125 0.0625} cells=${CELLS-0.25 0.125} end=${END:-20}
 consistent=${CONSISTENT-0.125}
 kd=${KD:-100 cm^3/(N s)} tau_c=${TAU_C:-1 Pa} manning=${MANNING:-0.016} settling=${SETTLING:-0.02 m/s}
+name=${NAME:-}
+IFS=';' read -ra mpm_args <<<"${MPM_ARGS:-}"
 out=${OUT:-$root/benchmarks/results/dam_three_solvers}
 work=${WORK:-$out/runs}
 mkdir -p "$out" "$work"
@@ -70,13 +75,14 @@ for scene in $scenes; do
     h=${run_drag%-*} drag=${run_drag##*-}
     run=$work/$scene/mpm2grid-$h
     [ "$drag" = lumped ] || run=$run-$drag
+    run=$run$name
     mpm_runs+=("--mpm" "$run")
     if ! finished "$run" "$end"; then
       rm -rf "$run"
       "$build/bin/mpm2grid" "$mpm_scene" "grid.spacing=$h m" "drag=$drag" "time.end=$end s" "time.output=1000 s" \
         "soil.erosion=excess_stress" "soil.erodibility=$kd" "soil.critical_shear_stress=$tau_c" \
         "soil.settling_velocity=$settling" "bed_shear.manning_n=$manning" "water.flip=0.99" "soil.flip=0.99" \
-        --out "$run" --log-level warn
+        ${mpm_args[@]+"${mpm_args[@]}"} --out "$run" --log-level warn
     fi
     echo "$scene mpm2grid h $h m, $drag drag: $(grep -m1 -o '"shear_eroded_volume": [^,]*' "$run/summary.json")"
   done
@@ -85,12 +91,12 @@ for scene in $scenes; do
     echo
     echo "One soil: kd $kd, tau_c $tau_c; Manning n $manning s/m^(1/3) (mpm2grid's bed shear, the breach"
     echo "model's grain roughness), k_s $ks m (foam-erosion's rough wall); settling velocity $settling"
-    echo "(mpm2grid); $end s of flow."
+    echo "(mpm2grid); $end s of flow.${MPM_ARGS:+ mpm2grid overrides: \`$MPM_ARGS\`.}"
     echo
     echo "Machine: $(uname -n), $(nproc) cores; repository at git $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown); $(date -u +%Y-%m-%dT%H:%MZ)."
     echo
-    /usr/bin/python3 "$here/plot_three_solvers.py" --title "Table 3.4 $scene" --out "$out/$scene.png" \
-      --csv "$out/$scene.csv" $(for c in $cells; do echo "--foam $work/$scene/foam-$c"; done) \
-      "${mpm_runs[@]}"
-  } | tee "$out/$scene.md"
+    /usr/bin/python3 "$here/plot_three_solvers.py" --title "Table 3.4 $scene${MPM_ARGS:+ ($MPM_ARGS)}" \
+      --out "$out/$scene$name.png" --csv "$out/$scene$name.csv" \
+      $(for c in $cells; do echo "--foam $work/$scene/foam-$c"; done) "${mpm_runs[@]}"
+  } | tee "$out/$scene$name.md"
 done
