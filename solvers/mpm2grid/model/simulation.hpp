@@ -241,6 +241,8 @@ class Simulation {
   // its velocities before the forces (a FLIP share), the soil's shape (mass and offsets), the
   // soil's fill per slot, and per water particle 1 where it is free.
   NodeFields<Dim> free_nodes_, free_before_, shape_nodes_;
+  NodeFields<Dim> carrier_;           // its momentum per node (velocity), which carries detached soil
+  std::vector<double> carried_mass_;  // and its mass at each detached soil particle
   std::vector<double> soil_fill_;
   std::vector<char> free_water_;
   // With a FLIP share: each species' node velocities from its particles before the step's forces
