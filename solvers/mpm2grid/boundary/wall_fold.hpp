@@ -24,6 +24,14 @@ struct TileField {
   int axis = 0;  // for component
 };
 
+// A tile of a scalar (field 0) and a vector (fields 1 .. Dim).
+template <int Dim>
+constexpr std::array<TileField, 1 + Dim> scalar_and_vector_fields() {
+  std::array<TileField, 1 + Dim> f{};
+  for (int a = 0; a < Dim; ++a) f[static_cast<std::size_t>(1 + a)] = {TileField::component, a};
+  return f;
+}
+
 template <int Dim>
 class WallFold {
  public:

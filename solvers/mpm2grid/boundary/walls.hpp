@@ -35,6 +35,16 @@ struct Walls {
     return w;
   }
 
+  // The walls with every closed side a slip wall: across each a mirror image of what lies inside
+  // (the soil's shape for the free water's contact, coupling/free_water.hpp).
+  Walls all_slip() const {
+    Walls w = *this;
+    for (auto& sides : w.kind)
+      for (WallKind& k : sides)
+        if (k != WallKind::open) k = WallKind::slip;
+    return w;
+  }
+
   // True when some side is open (particles can leave the model).
   bool any_open() const {
     for (const auto& sides : kind)

@@ -60,11 +60,7 @@ void spread_soil_shape(const Particles<Dim>& soil, const BlockGrid<Dim>& grid, c
                        NodeFields<Dim>& shape) {
   using Tile = NodeTile<Dim, 1 + Dim>;
   auto tile = std::make_unique<Tile>();
-  constexpr auto fields = [] {
-    std::array<TileField, 1 + Dim> f{};
-    for (int a = 0; a < Dim; ++a) f[static_cast<std::size_t>(1 + a)] = {TileField::component, a};
-    return f;
-  }();
+  constexpr auto fields = scalar_and_vector_fields<Dim>();  // the mass and the offsets
   const auto leave = [&] {
     walls.fold(*tile, fields);
     tile->for_each_node([&](int t, long slot) {

@@ -20,19 +20,6 @@
 #include "solvers/mpm2grid/transfer/stencil_rows.hpp"
 
 namespace suite::mpm2grid {
-namespace {
-
-// The walls with every closed side a slip wall: the soil's shape is folded as its mirror image
-// across each (coupling/free_water.hpp).
-template <int Dim>
-Walls<Dim> mirror_walls(Walls<Dim> walls) {
-  for (auto& sides : walls.kind)
-    for (WallKind& k : sides)
-      if (k != WallKind::open) k = WallKind::slip;
-  return walls;
-}
-
-}  // namespace
 
 template <int Dim>
 Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::optional<mpi::Comm> comm)
@@ -41,7 +28,7 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
       water_walls_(settings.walls.for_water()),
       fold_(settings.walls, grid_.spacing(), settings.inlet.has_value()),
       water_fold_(water_walls_, grid_.spacing(), settings.inlet.has_value()),
-      shape_fold_(mirror_walls(settings.walls), grid_.spacing(), false),
+      shape_fold_(settings.walls.all_slip(), grid_.spacing(), false),
       comm_(std::move(comm)) {
   if (s_.inlet) inlet_.emplace(*s_.inlet);
   if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, grid_);
@@ -419,11 +406,7 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mixture_volume_rates(double dt) {
   // Tile fields: 0 phi_s, 1 .. Dim the volume flux phi_s v_s + (1 - phi_s) v_w.
   using Tile = NodeTile<Dim, 1 + Dim>;
   auto tile = std::make_unique<Tile>();
-  constexpr auto fields = [] {
-    std::array<TileField, 1 + Dim> f{};
-    for (int d = 0; d < Dim; ++d) f[static_cast<std::size_t>(1 + d)] = {TileField::component, d};
-    return f;
-  }();
+  constexpr auto fields = scalar_and_vector_fields<Dim>();
   const auto enter = [&] {
     tile->zero();
     tile->for_each_node([&](int t, long slot) {
