@@ -548,19 +548,35 @@ void Simulation<Dim>::carry_suspended() {
   // The free water's velocity weighted by its node masses, sum_i w_ip m_i v_i / sum_i w_ip m_i:
   // at the bed the free field's nodes inside the soil hold only its kernel tails, whose velocities
   // (a light node's forces over its mass) carried a grain at 87-261 m/s (example 2 at h = 0.0625
-  // m blew up after 5.75 s). C_p likewise (the affine part of the momentum over the mass).
-  const auto& f = free_nodes_;
-  carrier_.velocity.resize(grid_.nodes());
-  for (std::size_t i = 0; i < grid_.nodes(); ++i) carrier_.velocity[i] = f.mass[i] * f.velocity[i];
-  probe_.v.resize(probe_.x.size());
-  probe_.C.resize(probe_.x.size());
-  grid_to_particles_each<VelocityGradient::none>(probe_, grid_, carrier_, &f.mass, &carried_mass_, &water_fold_,
-                                                 [](std::size_t) {});
-  for (std::size_t k = 0; k < carried.size(); ++k) {
-    const double m = carried_mass_[k];
-    if (!(m > 0)) continue;  // no free water reaches it: it keeps the soil grid's velocity
-    soil_.v[carried[k]] = probe_.v[k] / m, soil_.C[carried[k]] = probe_.C[k] / m;
-  }
+  // m blew up after 5.75 s). C_p = 0: the first moment of the mass-weighted momentum is no affine
+  // velocity (a uniform flow over uneven node masses gives C = v (the mass's offset)^T D^-1, which
+  // P2G spread back as momentum: a cluster of grains on the dam's face ran away to 58 m/s in 22
+  // steps, example 2 at h = 0.0625 m after 6.4 s), and a suspension's grains need none. A grain
+  // that no free water reaches moves with the soil's velocity weighted the same way (by the soil's
+  // fill, its mass complete on ghost nodes too): the soil grid's own velocity there is mostly the
+  // bed's light surface nodes (the bed's stresses over a kernel tail's mass), which threw grains
+  // lying on the dam's face up at 24-123 m/s (example 2 at h = 0.0625 m blew up after 6.28 s).
+  const auto carry = [&](const std::vector<Vec<Dim>>& velocity, const std::vector<double>& weight,
+                         const WallFold<Dim>& walls) {
+    carrier_.velocity.resize(grid_.nodes());
+    for (std::size_t i = 0; i < grid_.nodes(); ++i) carrier_.velocity[i] = weight[i] * velocity[i];
+    probe_.v.resize(probe_.x.size());
+    probe_.C.resize(probe_.x.size());
+    grid_to_particles_each<VelocityGradient::none>(probe_, grid_, carrier_, &weight, &carried_mass_, &walls,
+                                                   [](std::size_t) {});
+    std::size_t left = 0;  // the grains this field does not reach, for the next
+    for (std::size_t k = 0; k < carried.size(); ++k) {
+      if (const double m = carried_mass_[k]; m > 0) {
+        soil_.v[carried[k]] = probe_.v[k] / m, soil_.C[carried[k]] = Mat<Dim>::Zero();
+      } else {
+        carried[left] = carried[k], probe_.x[left] = probe_.x[k];
+        ++left;
+      }
+    }
+    carried.resize(left), probe_.x.resize(left);
+  };
+  carry(free_nodes_.velocity, free_nodes_.mass, water_fold_);
+  if (!carried.empty()) carry(soil_nodes_.velocity, soil_fill_, fold_);
 }
 
 // A species' home blocks before the move (home_before_), and after it which particles it took to

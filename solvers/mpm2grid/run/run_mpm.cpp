@@ -408,6 +408,16 @@ class MpmRun {
         .require_same(scene_keys_, kMayChangeOnRestart, where);
     checkpoint::require_later_end(scene_.time.end, r.header().time, where);
     read_state(r, sim_, p_);
+    // A restart may change time.series or time.output (e.g. frequent outputs just before a
+    // failure): a checkpointed next time that is not the interval's next multiple after now is
+    // recomputed as that. One that is (to round-off: the run adds the interval up) is kept as it
+    // is, so that a run restarted with unchanged settings repeats the uninterrupted run bit for bit.
+    const auto next_event = [t = sim_.time()](double next, double interval) {
+      const double k = std::floor(t / interval * (1 + 1e-12)) + 1;  // the next multiple's number
+      return std::abs(next / interval - k) < 1e-6 ? next : k * interval;
+    };
+    p_.next_sample = next_event(p_.next_sample, scene_.time.series);
+    p_.next_output = next_event(p_.next_output, scene_.time.output);
     last_checkpoint_step_ = sim_.steps();
     record_.extra()["restarted_from"] = path.string();
     // later ones belong to the run being replaced
