@@ -13,6 +13,7 @@ find_package(CLI11 REQUIRED)
 if(SUITE_WITH_MPM2GRID)
   include(FindPETScPkgConfig)
   include(FindMETIS)
+  find_package(OpenMP REQUIRED COMPONENTS CXX)  # GCC's libgomp: threads inside a rank
 endif()
 if(SUITE_WITH_MPM2GRID OR SUITE_WITH_CARVING OR SUITE_WITH_FOAM_EROSION_FEM OR SUITE_WITH_STUDIES)
   find_package(Eigen3 3.3 REQUIRED NO_MODULE)

@@ -5,7 +5,14 @@
     node_scaling.py CSV PNG                     the report from a CSV written before
 
 LABEL names one session on a node (a lease: `lease1`), RUNS_DIR is run_node_scaling.sh's OUT_DIR
-(runs CASE-rRANKS-REPEAT, CASE-rRANKS-MODE-REPEAT, ceiling copies CASE-copyI, machine.txt).
+(runs CASE-rRANKS-REPEAT, CASE-rRANKS-MODE-REPEAT, CASE-rRANKStTHREADS-REPEAT, ceiling copies
+CASE-copyI, machine.txt). The rows of other labels already in CSV are kept (a lease's runs are
+gone with its node; the CSV is their record).
+
+Runs with threads inside the ranks (HYBRID in run_node_scaling.sh) get a table of their own per
+case: ranks x threads, the speedup over the same fastest one-rank run, the efficiency per core
+(speedup / (ranks x threads)), and the step's mean rank split into compute, waiting in MPI and the
+rest of the communication, beside the same lease's one thread per rank on as many cores.
 
 Per case and rank count: the step phase on the slowest rank (run.json phases.step.max_s, median
 over repeats), the speedup T1 / TP with T1 the fastest one-rank run (a slow one-rank run cannot
@@ -38,9 +45,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 CASES = {"ex2": "Table 3.4 example 2, h = 0.025 m", "ex2fine": "example 2, h = 0.0125 m",
          "ex2consistent": "example 2, h = 0.025 m, consistent drag", "3d": "two_species_3d, h = 5 mm"}
-RUN = re.compile(r"^(?P<case>[a-z0-9]+)-r(?P<ranks>\d+)(-(?P<mode>equal|measured))?-(?P<repeat>\d+)$")
+RUN = re.compile(r"^(?P<case>[a-z0-9]+)-r(?P<ranks>\d+)(t(?P<threads>\d+))?(-(?P<mode>equal|measured))?-(?P<repeat>\d+)$")
 COPY = re.compile(r"^(?P<case>[a-z0-9]+)-copy(?P<copy>\d+)$")
-HEAD = ["lease", "case", "kind", "mode", "repeat", "copy"] + COLUMNS
+HEAD = ["lease", "case", "kind", "mode", "repeat", "copy", "threads"] + COLUMNS
 
 
 def collect(label, runs_dir):
@@ -52,7 +59,7 @@ def collect(label, runs_dir):
         row = {k: "" if v is None else str(v) for k, v in metrics(str(d)).items()}
         row.update(lease=label, case=(m or c)["case"], kind="run" if m else "copy",
                    mode=(m["mode"] or "equal") if m else "", repeat=m["repeat"] if m else "",
-                   copy=c["copy"] if c else "")
+                   copy=c["copy"] if c else "", threads=(m["threads"] or "1") if m else "1")
         rows.append(row)
     machine = Path(runs_dir) / "machine.txt"
     return rows, machine.read_text().strip() if machine.exists() else ""
@@ -76,7 +83,9 @@ def report(rows, machines, png):
         mine = [r for r in rows if r["lease"] == lease]
         for case in [c for c in CASES if any(r["case"] == c for r in mine)]:
             runs = [r for r in mine if r["case"] == case and r["kind"] == "run" and r["mode"] == "equal"
-                    and r["status"] == "completed"]
+                    and r["status"] == "completed" and r.get("threads", "1") in ("", "1")]
+            hybrid = [r for r in mine if r["case"] == case and r["kind"] == "run" and r["mode"] == "equal"
+                      and r["status"] == "completed" and r.get("threads", "1") not in ("", "1")]
             ones = {r["repeat"]: num(r, "step_s") for r in runs if r["ranks"] == "1"}
             if not ones:
                 continue
@@ -137,6 +146,9 @@ def report(rows, machines, png):
                            f"{compute / ideal:.2f}x), its slowest rank per phase {compute_max / compute:.2f}x "
                            f"the mean; waiting in MPI {wait:.3g} s; balancing {balance:.3g} s; the rest of the "
                            f"communication {comm:.3g} s.")
+            if hybrid:
+                out.append("")
+                out += hybrid_table(runs, hybrid, t1)
             out.append("")
         measured = [r for r in mine if r["kind"] == "run" and r["mode"] == "measured" and r["status"] == "completed"]
         if measured:
@@ -153,6 +165,32 @@ def report(rows, machines, png):
             out.append("")
     chart(curves, png)
     return "\n".join(out)
+
+
+def hybrid_table(runs, hybrid, t1):
+    """Threads inside the ranks beside one thread per rank on as many cores (the same lease)."""
+    out = ["Threads inside the ranks (OMP_NUM_THREADS, each rank on its own cores), beside one thread per rank "
+           "on as many cores; per step, ms on the mean rank:",
+           "",
+           "| ranks x threads | cores | runs | step phase (s) | speedup | efficiency | compute | waiting in MPI "
+           "| rest of the communication |",
+           "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    configs = sorted({(int(r["ranks"]), int(r.get("threads") or 1)) for r in runs + hybrid},
+                     key=lambda rt: (-rt[0] * rt[1], -rt[0]))
+    for p, t in configs:
+        if p * t == 1:
+            continue
+        mine = [r for r in runs + hybrid if int(r["ranks"]) == p and int(r.get("threads") or 1) == t]
+        tp = statistics.median(num(r, "step_s") for r in mine)
+        fast = min(mine, key=lambda r: num(r, "step_s"))
+        per = 1e3 / num(fast, "steps")
+        compute = phase_sum(fast, COMPUTE, "mean") * per
+        wait = phase_sum(fast, STEP_PHASES, "wait") * per
+        comm = (phase_sum(fast, COMM, "mean") - phase_sum(fast, COMM, "wait")) * per
+        times = ", ".join(f"{num(r, 'step_s'):.3g}" for r in mine)
+        out.append(f"| {p} x {t} | {p * t} | {len(mine)} | {tp:.3g} ({times}) | {t1 / tp:.2f}x | "
+                   f"{100 * t1 / tp / (p * t):.0f}% | {compute:.2f} | {wait:.2f} | {comm:.2f} |")
+    return out
 
 
 def chart(curves, png):
@@ -216,6 +254,12 @@ def main(argv):
     machines = {}
     if len(argv) > 3:
         rows = []
+        labels = [arg.partition("=")[0] for arg in argv[3:]]
+        if Path(csv_path).exists():  # the other leases' rows, as recorded
+            with open(csv_path) as f:
+                rows = [r for r in csv.DictReader(f) if r["lease"] not in labels]
+            read_machines(csv_path, machines)
+            machines = {k: v for k, v in machines.items() if k not in labels}
         for arg in argv[3:]:
             label, _, runs_dir = arg.partition("=")
             found, machine = collect(label, runs_dir)
@@ -231,16 +275,20 @@ def main(argv):
     else:
         with open(csv_path) as f:
             rows = list(csv.DictReader(f))
-        info = Path(csv_path).with_suffix(".machines.txt")
-        if info.exists():
-            label = None
-            for line in info.read_text().splitlines():
-                if line.startswith("[") and line.endswith("]"):
-                    label = line[1:-1]
-                    machines[label] = ""
-                elif label:
-                    machines[label] = (machines[label] + "\n" + line).strip()
+        read_machines(csv_path, machines)
     print(report(rows, machines, png))
+
+
+def read_machines(csv_path, machines):
+    info = Path(csv_path).with_suffix(".machines.txt")
+    if info.exists():
+        label = None
+        for line in info.read_text().splitlines():
+            if line.startswith("[") and line.endswith("]"):
+                label = line[1:-1]
+                machines[label] = ""
+            elif label:
+                machines[label] = (machines[label] + "\n" + line).strip()
 
 
 if __name__ == "__main__":

@@ -9,7 +9,10 @@
 #     MPM2GRID    the executable; SCENES_DIR solvers/mpm2grid/scenes; BENCH_DIR benchmarks/mpm2grid
 #     OUT_DIR     one folder per run (run.json, series.csv, summary.json, stderr; no HDF5)
 #   env: RANKS ("1 2 4 8 16"), REPEATS (2), COPIES (the node's cores: the ceiling's pinned copies),
-#        CASES ("ex2 ex2fine ex2consistent 3d"), BIND ("--bind-to core --map-by core")
+#        CASES ("ex2 ex2fine ex2consistent 3d"), BIND ("--bind-to core --map-by core"),
+#        HYBRID ("": none; e.g. "8x2 4x4 2x8"): ranks x threads per rank (OMP_NUM_THREADS), each
+#        rank bound to its own cores (--map-by slot:PE=T), its threads to one core each; run after
+#        each case's rank counts, as often, named CASE-rRANKStTHREADS-REPEAT
 #
 # Cases (issue 28's table): ex2 = Table 3.4 example 2 at h = 0.025 m (433k particles, 300 steps,
 # every rank count, REPEATS times, the ceiling first: it also warms a fresh node's memory);
@@ -25,17 +28,23 @@
 set -uo pipefail
 bin=$1 scenes=$2 bench=$3 out=$4
 ranks_list=${RANKS:-1 2 4 8 16} repeats=${REPEATS:-2} copies=${COPIES:-$(nproc)}
-cases=${CASES:-ex2 ex2fine ex2consistent 3d} bind=${BIND:---bind-to core --map-by core}
+cases=${CASES:-ex2 ex2fine ex2consistent 3d} bind=${BIND:---bind-to core --map-by core} hybrid=${HYBRID:-}
 mkdir -p "$out"
 top=$(echo "$ranks_list" | tr ' ' '\n' | sort -n | tail -1)
 quiet=("time.output=1000 s" --log-level warn)
 
-# run DIR RANKS ARGS...: one run; keeps only its small files.
+# run DIR RANKS ARGS...: one run; keeps only its small files. THREADS (environment, default 1):
+# threads per rank.
 run() {
   local dir=$1 ranks=$2; shift 2
+  local threads=${THREADS:-1}
   rm -rf "$dir"
   local t0=$SECONDS rc=0
-  if [ "$ranks" = 1 ]; then
+  if [ "$threads" != 1 ]; then
+    OMP_NUM_THREADS=$threads OMP_PROC_BIND=close OMP_PLACES=cores mpirun -n "$ranks" --map-by "slot:PE=$threads" \
+      --bind-to core -x OMP_NUM_THREADS -x OMP_PROC_BIND -x OMP_PLACES "$bin" "$@" "${quiet[@]}" --out "$dir" \
+      2> "$dir.err" || rc=$?
+  elif [ "$ranks" = 1 ]; then
     taskset -c 0 "$bin" "$@" "${quiet[@]}" --out "$dir" 2> "$dir.err" || rc=$?
   else
     # shellcheck disable=SC2086
@@ -78,11 +87,13 @@ ceiling() {
 } > "$out/machine.txt"
 cat "$out/machine.txt"
 
-# scaling NAME REPEATS RANKS_LIST ARGS...: every rank count in turn, REPEATS times.
+# scaling NAME REPEATS RANKS_LIST ARGS...: every rank count in turn, then every HYBRID
+# ranks x threads, REPEATS times.
 scaling() {
   local name=$1 reps=$2 list=$3; shift 3
   for ((r = 1; r <= reps; r++)); do
     for n in $list; do run "$out/$name-r$n-$r" "$n" "$@"; done
+    for rt in $hybrid; do THREADS=${rt#*x} run "$out/$name-r${rt%x*}t${rt#*x}-$r" "${rt%x*}" "$@"; done
   done
 }
 

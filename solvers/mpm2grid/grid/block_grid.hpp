@@ -207,13 +207,24 @@ struct NodeFields {
   std::vector<double> pressure;    // water only, with buoyancy: sum_p w_ip m_p p_p after P2G,
                                    // then the mass-weighted pressure (Pa)
 
-  void reset(std::size_t nodes) {
-    mass.assign(nodes, 0.0);
-    momentum.assign(nodes, Vec<Dim>::Zero());
-    force.assign(nodes, Vec<Dim>::Zero());
-    velocity.assign(nodes, Vec<Dim>::Zero());
-    drag.assign(nodes, 0.0);
-    pressure.assign(nodes, 0.0);
+  // Every field `nodes` long and zero; with threads, each zeroes a share of the nodes.
+  void reset(std::size_t nodes, int threads = 1) {
+    if (threads == 1) {
+      mass.assign(nodes, 0.0);
+      momentum.assign(nodes, Vec<Dim>::Zero());
+      force.assign(nodes, Vec<Dim>::Zero());
+      velocity.assign(nodes, Vec<Dim>::Zero());
+      drag.assign(nodes, 0.0);
+      pressure.assign(nodes, 0.0);
+      return;
+    }
+    mass.resize(nodes), momentum.resize(nodes), force.resize(nodes), velocity.resize(nodes);
+    drag.resize(nodes), pressure.resize(nodes);
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::size_t i = 0; i < nodes; ++i) {
+      mass[i] = drag[i] = pressure[i] = 0;
+      momentum[i].setZero(), force[i].setZero(), velocity[i].setZero();
+    }
   }
 };
 

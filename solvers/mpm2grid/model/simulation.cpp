@@ -30,6 +30,7 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
       water_fold_(water_walls_, grid_.spacing(), settings.inlet.has_value()),
       shape_fold_(settings.walls.all_slip(), grid_.spacing(), false),
       comm_(std::move(comm)) {
+  if (s_.threads < 1) throw std::invalid_argument("threads per rank: give 1 or more");
   if (s_.inlet) inlet_.emplace(*s_.inlet);
   if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, grid_);
   if (s_.erosion.on && !s_.bed_shear.on())
@@ -112,9 +113,9 @@ void Simulation<Dim>::build_grid() {
     dd_->prepare(grid_);  // adds the halo blocks after these
     timed.emplace(times_, StepPhase::grid, wait_clock());
   }
-  water_nodes_.reset(grid_.nodes());
-  soil_nodes_.reset(grid_.nodes());
-  if (s_.free_water_field) free_nodes_.reset(grid_.nodes());
+  water_nodes_.reset(grid_.nodes(), s_.threads);
+  soil_nodes_.reset(grid_.nodes(), s_.threads);
+  if (s_.free_water_field) free_nodes_.reset(grid_.nodes(), s_.threads);
 }
 
 // With the free-water field: the soil's shape on the grid (complete on owned nodes, its fill on
@@ -123,7 +124,7 @@ template <int Dim>
 void Simulation<Dim>::sort_water() {
   {
     auto timed = phase(StepPhase::p2g_soil);
-    shape_nodes_.reset(grid_.nodes());
+    shape_nodes_.reset(grid_.nodes(), s_.threads);
     spread_soil_shape(soil_, grid_, shape_fold_, shape_nodes_);
   }
   if (dd_) {
@@ -142,10 +143,32 @@ void Simulation<Dim>::sort_water() {
 }
 
 // The transfers and touch_blocks are compiled for the baseline and for AVX2
-// (kernels/vector_clones.hpp): there std::floor is one instruction.
+// (kernels/vector_clones.hpp): there std::floor is one instruction. With threads, touch_blocks'
+// three passes (transfer/apic.hpp, blocks_reached).
 template <int Dim>
-SUITE_VECTOR_CLONES void Simulation<Dim>::touch(const Particles<Dim>& P, std::vector<int>& groups) {
-  touch_blocks(P, grid_, &groups);
+void Simulation<Dim>::touch(const Particles<Dim>& P, std::vector<int>& groups) {
+  if (s_.threads == 1) return touch_part(P, groups, {});
+  groups.resize(P.size());
+  cut_evenly(P.size(), parts_);
+  reached_.resize(parts_.size());
+  in_parts(parts_, [&](std::size_t k, std::span<const ParticleRun> runs) { touch_part(P, reached_[k], runs[0]); });
+  for (std::size_t k = 0; k < parts_.size(); ++k)
+    for (const Index<Dim>& b : reached_[k]) grid_.activate(b);
+  in_parts(parts_, [&](std::size_t, std::span<const ParticleRun> runs) { touch_part(P, groups, runs[0]); });
+}
+
+// One part of touch(): without `run`, touch_blocks; with it, the blocks the run's stencils reach
+// (into `reached`) or, the blocks active, the run's groups (into `groups`).
+template <int Dim>
+SUITE_VECTOR_CLONES void Simulation<Dim>::touch_part(const Particles<Dim>& P, std::vector<int>& groups,
+                                                     std::optional<ParticleRun> run) {
+  if (!run) return touch_blocks(P, grid_, &groups);
+  find_groups(P, grid_, *run, groups);
+}
+template <int Dim>
+SUITE_VECTOR_CLONES void Simulation<Dim>::touch_part(const Particles<Dim>& P, std::vector<Index<Dim>>& reached,
+                                                     ParticleRun run) {
+  blocks_reached<Dim>(P, run, grid_.spacing(), reached);
 }
 
 // The particles' stress inputs to P2G: the water's pressures (its Kirchhoff stress is -J p I),
@@ -153,13 +176,16 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::touch(const Particles<Dim>& P, std::ve
 template <int Dim>
 void Simulation<Dim>::stresses() {
   water_pressure_.resize(water_.size());
-  for (std::size_t p = 0; p < water_.size(); ++p) water_pressure_[p] = s_.water.eos.pressure(water_.J[p]);
+  const std::size_t n_water = water_.size(), n_soil = soil_.size();
+#pragma omp parallel for schedule(static) num_threads(s_.threads) if (s_.threads > 1)
+  for (std::size_t p = 0; p < n_water; ++p) water_pressure_[p] = s_.water.eos.pressure(water_.J[p]);
   soil_tau_.resize(soil_.size());
   soil_drag_.resize(soil_.size());
   solid_volume_.resize(s_.buoyancy ? soil_.size() : 0);
   const double c_e = s_.soil.drag_coefficient(s_.water.density), solid = 1 - s_.soil.porosity;
   const bool implicit = s_.forces == ForceScheme::implicit_end;
-  for (std::size_t p = 0; p < soil_.size(); ++p) {
+#pragma omp parallel for schedule(dynamic, kPart) num_threads(s_.threads) if (s_.threads > 1)
+  for (std::size_t p = 0; p < n_soil; ++p) {
     // The stress is a function of F_E alone: a known one for a bit-for-bit equal F_E is the
     // same value, not computed again. (Particles removed or moved since only miss it.)
     // (The implicit forces take the stress at the step's end: none is needed here.)
@@ -175,9 +201,31 @@ void Simulation<Dim>::stresses() {
 }
 
 template <int Dim>
-SUITE_VECTOR_CLONES void Simulation<Dim>::spread(const Particles<Dim>& P, const P2GSources<Dim>& in,
-                                                 NodeFields<Dim>& nodes) {
+SUITE_VECTOR_CLONES void Simulation<Dim>::spread_part(const Particles<Dim>& P, const P2GSources<Dim>& in,
+                                                      NodeFields<Dim>& nodes) {
   particles_to_grid(P, in, grid_, nodes);
+}
+
+// With threads, the groups of one colour at once, colour after colour (transfer/sweep_schedule.hpp).
+// (The parallel regions stay out of the vector clones: GCC compiles a region's body as a function
+// of its own, for the baseline only; each part calls the clone.)
+template <int Dim>
+void Simulation<Dim>::spread(const Particles<Dim>& P, const P2GSources<Dim>& in, NodeFields<Dim>& nodes) {
+  if (s_.threads == 1) return spread_part(P, in, nodes);
+  cut_by_colour(P.x, grid_.spacing(), in.subset, s_.threads, colours_, part_keys_);
+  for (const SweepParts& parts : colours_)
+    in_parts(parts, [&](std::size_t, std::span<const ParticleRun> runs) {
+      P2GSources<Dim> part = in;
+      part.runs = runs;
+      spread_part(P, part, nodes);
+    });
+}
+
+template <int Dim>
+template <class F>
+void Simulation<Dim>::in_parts(const SweepParts& parts, F&& f) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(s_.threads)
+  for (std::size_t k = 0; k < parts.size(); ++k) f(k, parts[k]);
 }
 
 // P2G of both species. The water goes first: its node pressures p_i = sum_p w_ip m_p p_p / m_i
@@ -197,7 +245,7 @@ void Simulation<Dim>::particles_to_grids(double dt) {
   const bool free = s_.free_water_field;
   NodeFields<Dim>* free_before = free && s_.water.flip > 0 ? &free_before_ : nullptr;
   for (NodeFields<Dim>* before : {water_before, soil_before, free_before})
-    if (before) before->reset(grid_.nodes());
+    if (before) before->reset(grid_.nodes(), s_.threads);
   {
     auto timed = phase(StepPhase::p2g_water);
     // With the free-water field the pore water's particles to water_nodes_, the free ones to
@@ -453,26 +501,33 @@ void Simulation<Dim>::distribute() {
 // G2P of the water: v_p and C_p, and div v_p for the J update (not with the mixture, whose J
 // update samples the grid itself).
 template <int Dim>
-SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities() {
+void Simulation<Dim>::water_velocities() {
+  divergence_.resize(s_.mixture ? 0 : water_.size());
+  if (s_.threads == 1) return water_velocities_part({});
+  cut_evenly(water_.size(), parts_);
+  in_parts(parts_, [&](std::size_t, std::span<const ParticleRun> runs) { water_velocities_part(runs); });
+}
+
+template <int Dim>
+SUITE_VECTOR_CLONES void Simulation<Dim>::water_velocities_part(std::span<const ParticleRun> runs) {
   const FlipBlend<Dim> flip{s_.water.flip > 0 ? &water_before_ : nullptr, s_.water.flip};
   if (s_.mixture) {
-    grid_to_particles_each<VelocityGradient::none>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
-                                                   [](std::size_t) {}, flip);
+    grid_to_particles_each<VelocityGradient::none>(
+        water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_, [](std::size_t) {}, flip, {}, runs);
     return;
   }
-  divergence_.resize(water_.size());
   const auto keep = [&](std::size_t p, double div) { divergence_[p] = div; };
   if (!s_.free_water_field) {
     grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
-                                                         keep, flip);
+                                                         keep, flip, {}, runs);
     return;
   }
   // The pore water from its field, the free water from its own.
   grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, water_nodes_, nullptr, nullptr, &water_fold_,
-                                                       keep, flip, {&free_water_, 0});
+                                                       keep, flip, {&free_water_, 0}, runs);
   const FlipBlend<Dim> free_flip{s_.water.flip > 0 ? &free_before_ : nullptr, s_.water.flip};
   grid_to_particles_each<VelocityGradient::divergence>(water_, grid_, free_nodes_, nullptr, nullptr, &water_fold_, keep,
-                                                       free_flip, {&free_water_, 1});
+                                                       free_flip, {&free_water_, 1}, runs);
 }
 
 // probe_.v and probe_.C: the velocity and APIC matrix of `nodes` at the points probe_.x.
@@ -525,10 +580,21 @@ void Simulation<Dim>::wall_water_fill() {
 // The saturation comes from these, sampled at the positions the velocities were spread from:
 // the return mapping's cohesion is the step's own.
 template <int Dim>
-SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities() {
-  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_fill_, &soil_.saturation, &fold_,
-                    {s_.soil.flip > 0 ? &soil_before_ : nullptr, s_.soil.flip});
+void Simulation<Dim>::soil_velocities() {
+  if (s_.threads == 1) {
+    soil_velocities_part({});
+  } else {
+    grad_v_.resize(soil_.size());
+    cut_evenly(soil_.size(), parts_);
+    in_parts(parts_, [&](std::size_t, std::span<const ParticleRun> runs) { soil_velocities_part(runs); });
+  }
   if (s_.erosion.on) carry_suspended();
+}
+
+template <int Dim>
+SUITE_VECTOR_CLONES void Simulation<Dim>::soil_velocities_part(std::span<const ParticleRun> runs) {
+  grid_to_particles(soil_, grid_, soil_nodes_, grad_v_, &water_fill_, &soil_.saturation, &fold_,
+                    {s_.soil.flip > 0 ? &soil_before_ : nullptr, s_.soil.flip}, runs);
 }
 
 // The detached (suspended) soil particles move with the water: v_p and C_p from the water grid.
@@ -594,13 +660,13 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::mark_moved(const Particles<Dim>& P, st
   for (std::size_t p = 0; p < P.size(); ++p) left[p] = BlockGrid<Dim>::key(grid_.home_block(P.x[p])) != home_before_[p];
 }
 
-// The particle updates after G2P, compiled for the baseline only with the return mapping inlined
-// (kernels/vector_clones.hpp, SUITE_INLINE_CALLS), which makes the step faster. (Updating each
-// particle inside the G2P sweep instead, its gradient never stored, was slower: the return
-// mapping's call inside the sweep's loop costs more than the stored gradient. Both in
-// docs/mpm2grid.md, "Benchmarks".)
+// The particle updates after G2P. The soil's, with the return mapping, is compiled for the
+// baseline only with the return mapping inlined (kernels/vector_clones.hpp, SUITE_INLINE_CALLS),
+// which makes the step faster. (Updating each particle inside the G2P sweep instead, its gradient
+// never stored, was slower: the return mapping's call inside the sweep's loop costs more than the
+// stored gradient. Both in docs/mpm2grid.md, "Benchmarks".)
 template <int Dim>
-SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
+void Simulation<Dim>::update_particles(double dt) {
   // Over several ranks, which particles the move takes to another home block (left_home_):
   // their home blocks before the move, compared after it.
   for (auto& left : left_home_) left.clear();
@@ -616,7 +682,9 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   }
   if (s_.mixture) mixture_volume_rates(dt);  // at the positions the water was spread from
   if (dd_) record_homes(water_);
-  for (std::size_t p = 0; p < water_.size(); ++p) {
+  const std::size_t n_water = water_.size();
+#pragma omp parallel for schedule(static) num_threads(s_.threads) if (s_.threads > 1)
+  for (std::size_t p = 0; p < n_water; ++p) {
     water_.x[p] += dt * water_.v[p];
     if (!s_.mixture) water_.J[p] *= implicit ? std::exp(dt * divergence_[p]) : 1 + dt * divergence_[p];
     s_.walls.clamp(water_.x[p]);
@@ -625,17 +693,33 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
   timed.emplace(times_, StepPhase::g2p_soil, wait_clock());
   wall_water_fill();
   soil_velocities();  // leaves the sums sum_i w_ip m_w,i / I_i in `saturation`
+  known_stress_.resize(soil_.size());
+  if (dd_) record_homes(soil_);
+  if (s_.threads == 1) {
+    update_soil(dt, {0, soil_.size()});
+  } else {
+    cut_evenly(soil_.size(), parts_);  // parts of kPart particles: whole batches of the return mapping
+    in_parts(parts_, [&](std::size_t, std::span<const ParticleRun> runs) {
+      for (const ParticleRun& run : runs) update_soil(dt, run);
+    });
+  }
+  if (dd_) mark_moved(soil_, left_home_[1]);
+}
+
+// The soil particles of `run` after their G2P: position, F_E through the return mapping, known
+// stresses, the detached ones stress-free and sinking.
+template <int Dim>
+SUITE_INLINE_CALLS void Simulation<Dim>::update_soil(double dt, ParticleRun run) {
   const double full = s_.water.density * std::pow(grid_.spacing(), Dim) * s_.soil.porosity;  // kg in a node's pores
   // With the excess-stress erosion the cohesion does not fall with the saturation; detached
   // (suspended) particles carry no stress and sink through the water.
   const bool weakens = !s_.erosion.on;
-  known_stress_.resize(soil_.size());
-  if (dd_) record_homes(soil_);
   // The return mappings kBatch particles at a time (HenckyDruckerPrager::project_all), the last
   // batch filled up with F = I.
   constexpr int kBatch = 4;
-  for (std::size_t first = 0; first < soil_.size(); first += kBatch) {
-    const int count = static_cast<int>(std::min<std::size_t>(kBatch, soil_.size() - first));
+  static_assert(kPart % kBatch == 0, "threads' parts hold whole batches");
+  for (std::size_t first = run.begin; first < run.end; first += kBatch) {
+    const int count = static_cast<int>(std::min<std::size_t>(kBatch, run.end - first));
     Mat<Dim> trial[kBatch];
     double log_jp[kBatch], saturation[kBatch];
     for (int n = 0; n < kBatch; ++n) {
@@ -667,7 +751,6 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_particles(double dt) {
       s_.walls.clamp(soil_.x[p]);
     }
   }
-  if (dd_) mark_moved(soil_, left_home_[1]);
 }
 
 template <int Dim>

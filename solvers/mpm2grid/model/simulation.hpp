@@ -8,6 +8,7 @@
 // the grid blocks it owns (decomposition/); members marked COLLECTIVE must then be called on
 // every rank, and sums over particles (masses, energies, the outflow) are over all ranks.
 // The model and its step: docs/methods/mpm2grid.md, "Continuum model" and "Step n -> n+1".
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
@@ -28,6 +29,7 @@
 #include "solvers/mpm2grid/model/step_timers.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
 #include "solvers/mpm2grid/transfer/apic.hpp"
+#include "solvers/mpm2grid/transfer/sweep_schedule.hpp"
 
 namespace suite::mpm2grid {
 
@@ -94,6 +96,10 @@ struct SimulationSettings {
   // contact; the drag acts on the pore water alone (coupling/free_water.hpp). Not with the
   // mixture or the implicit forces.
   bool free_water_field = false;
+  // OpenMP threads per rank for the transfers, stresses and particle updates (transfer/
+  // sweep_schedule.hpp); 1: none. More than one gives the same results whatever their number, and
+  // results that differ from one thread's at round-off (P2G's sums in another order).
+  int threads = 1;
   bool loads = false;                       // some soil particles carry loads
   double load_ramp = 0;                     // s over which the loads grow to full (0: at once)
 };
@@ -197,10 +203,17 @@ class Simulation {
  private:
   void build_grid();
   void touch(const Particles<Dim>& P, std::vector<int>& groups);
+  void touch_part(const Particles<Dim>& P, std::vector<int>& groups, std::optional<ParticleRun> run);
+  void touch_part(const Particles<Dim>& P, std::vector<Index<Dim>>& reached, ParticleRun run);
   void stresses();
   void particles_to_grids(double dt);
   void spread(const Particles<Dim>& P, const P2GSources<Dim>& in, NodeFields<Dim>& nodes);
+  void spread_part(const Particles<Dim>& P, const P2GSources<Dim>& in, NodeFields<Dim>& nodes);
+  // f(k, runs) for each part k, parts taken by the threads as they come free.
+  template <class F>
+  void in_parts(const SweepParts& parts, F&& f);
   void update_particles(double dt);
+  void update_soil(double dt, ParticleRun run);
   void remove_outflow();
   void keep_known_stresses();
   void solve_grid(double dt);
@@ -216,9 +229,11 @@ class Simulation {
   void solid_fractions();
   void mixture_volume_rates(double dt);
   void water_velocities();
+  void water_velocities_part(std::span<const ParticleRun> runs);
   void velocities_before(StepPhase p2g, NodeFields<Dim>& before);
   void wall_water_fill();
   void soil_velocities();
+  void soil_velocities_part(std::span<const ParticleRun> runs);
   void carry_suspended();
   void sort_water();
   void free_water_velocities(double dt);
@@ -276,6 +291,11 @@ class Simulation {
   std::optional<Inlet<Dim>> inlet_;
   std::optional<DomainDecomposition<Dim>> dd_;
   std::optional<BedShear<Dim>> bed_shear_;
+  // With threads: the parts of a G2P or particle update, P2G's by colour, scratch for those.
+  SweepParts parts_;
+  std::vector<SweepParts> colours_;
+  std::vector<std::uint64_t> part_keys_;
+  std::vector<std::vector<Index<Dim>>> reached_;  // touch(): the blocks each part's stencils reach
   double time_ = 0;
   long long steps_ = 0;
   StepTimes times_;

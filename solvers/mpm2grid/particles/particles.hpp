@@ -22,6 +22,11 @@ struct ParticleSubset {
   bool has(std::size_t p) const { return !flags || (*flags)[p] == value; }
 };
 
+// Particles begin .. end - 1 of a species: a thread's share of a sweep (transfer/sweep_schedule.hpp).
+struct ParticleRun {
+  std::size_t begin = 0, end = 0;
+};
+
 template <int Dim>
 struct Particles {
   std::vector<Vec<Dim>> x;         // position, m

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -81,6 +82,24 @@ constexpr const char* kSolver = "mpm2grid";
 constexpr long long kCheckpointFormat = 6;  // 2: inlet state, outlet record, initial soil volume; 3: block owners;
                                             // 4: particle loads (surcharges); 5: particle ids; 6: the scene's keys
 
+// A scene with its threads per rank (SimulationSettings::threads): OMP_NUM_THREADS, the usual
+// knob (slurm/mpm2grid.sbatch sets it from --cpus-per-task), else 1. Not OpenMP's own default of
+// every core the process may use: each of 16 ranks on a node would start 16 threads.
+template <int Dim>
+Scene<Dim> with_threads(Scene<Dim> scene) {
+  const char* value = std::getenv("OMP_NUM_THREADS");
+  if (!value || !*value) return scene;
+  char* end = nullptr;
+  const long n = std::strtol(value, &end, 10);
+  if (*end != '\0' || n < 1 || n > 1024)
+    throw InputError(
+        fmt::format("OMP_NUM_THREADS = '{}': mpm2grid takes one whole number of threads per rank "
+                    "(1 to 1024; unset it for one)",
+                    value));
+  scene.simulation.threads = static_cast<int>(n);
+  return scene;
+}
+
 // The scene keys a restart may change: when to stop, how often to sample and write, checkpoint
 // settings and the load-balancing knobs (the partition changes sums only at round-off). Every
 // other key is the checkpoint's physics and must stay. A later time.end extends a run.
@@ -92,7 +111,7 @@ class MpmRun {
  public:
   MpmRun(const mpi::Comm& comm, const config::Config& cfg, const RunOptions& o, Logger& log)
       : comm_(comm),
-        scene_(read_scene<Dim>(cfg)),
+        scene_(with_threads(read_scene<Dim>(cfg))),
         scene_keys_(cfg),
         log_(log),
         record_(comm, kSolver, o.argv),

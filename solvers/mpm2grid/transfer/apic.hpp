@@ -17,6 +17,7 @@
 // fastest in group order (transfer/particle_order.hpp).
 #include <array>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -73,6 +74,54 @@ void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, std::ve
   }
 }
 
+// touch_blocks over threads, in three passes that activate the same blocks in the same order (the
+// order in which a block's first stencil comes): each thread lists the blocks the stencils of its
+// share of the particles reach (blocks_reached, each group's once), the lists are activated one
+// after the other in the particles' order, and each thread then finds its particles' groups
+// (find_groups).
+template <int Dim>
+void blocks_reached(const Particles<Dim>& particles, ParticleRun run, double h, std::vector<Index<Dim>>& out) {
+  using Grid = BlockGrid<Dim>;
+  out.clear();
+  std::array<bool, Grid::kStencilBlocks> listed{};  // per corner of the current group: listed already
+  typename Grid::Key group = 0;
+  Index<Dim> previous{};
+  for (std::size_t p = run.begin; p < run.end; ++p) {
+    const Index<Dim> base = stencil_base(particles.x[p], h);
+    int moved = p == run.begin;
+    for (int d = 0; d < Dim; ++d) moved |= base[d] ^ previous[d];
+    if (!moved) continue;
+    const Index<Dim> g = Grid::block_holding(base);
+    if (p == run.begin || Grid::key(g) != group) {
+      group = Grid::key(g);
+      listed.fill(false);
+    }
+    int reach = 0;
+    for (int d = 0; d < Dim; ++d) reach |= (base[d] + 3 - g[d] * Grid::kSide >= Grid::kSide) << d;
+    for (int corner = 0; corner < Grid::kStencilBlocks; ++corner) {
+      if ((corner & ~reach) != 0 || listed[static_cast<std::size_t>(corner)]) continue;
+      Index<Dim> b = g;
+      for (int d = 0; d < Dim; ++d) b[d] += (corner >> d) & 1;
+      out.push_back(b);
+      listed[static_cast<std::size_t>(corner)] = true;
+    }
+    previous = base;
+  }
+}
+
+template <int Dim>
+void find_groups(const Particles<Dim>& particles, const BlockGrid<Dim>& grid, ParticleRun run,
+                 std::vector<int>& groups) {
+  using Grid = BlockGrid<Dim>;
+  typename Grid::Key group = 0;
+  int index = -1;
+  for (std::size_t p = run.begin; p < run.end; ++p) {
+    const Index<Dim> g = Grid::block_holding(stencil_base(particles.x[p], grid.spacing()));
+    if (p == run.begin || Grid::key(g) != group) group = Grid::key(g), index = grid.find_block(g);
+    groups[p] = index;
+  }
+}
+
 // What P2G spreads besides the particles' mass and APIC momentum (each null when not used).
 template <int Dim>
 struct P2GSources {
@@ -105,6 +154,8 @@ struct P2GSources {
   NodeFields<Dim>* before = nullptr;
   // Only these particles (the free or the pore water); all by default.
   ParticleSubset subset = {};
+  // Only the particles of these runs (a thread's part: transfer/sweep_schedule.hpp); all if empty.
+  std::span<const ParticleRun> runs = {};
 };
 
 namespace detail {
@@ -172,7 +223,7 @@ void particles_to_grid(const Particles<Dim>& P, const P2GSources<Dim>& in, const
         const double e = !extra ? 0.0 : in.drag ? (*in.drag)[p] : P.mass[p] * (*in.pressure)[p];
         scatter_apic<Form, Fold>(*tile, s, first, P.mass[p], P.v[p], P.C[p], S, g, in.fold_dt, extra ? kExtra : -1, e);
       },
-      in.subset);
+      in.subset, in.runs);
 }
 
 template <bool Fold, int Dim>
@@ -233,13 +284,14 @@ constexpr Axes no_gradient(int) {
 template <VelocityGradient Gradient, bool Blend, int Dim, class Each>
 void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
                        const std::vector<double>* field, std::vector<double>* at_particles, const WallFold<Dim>* walls,
-                       Each&& each, const FlipBlend<Dim>& flip, const ParticleSubset& subset) {
+                       Each&& each, const FlipBlend<Dim>& flip, const ParticleSubset& subset,
+                       std::span<const ParticleRun> runs) {
   // Velocity, the sampled field, and with the blend the velocity before the forces.
   constexpr int kFields = Blend ? 2 * Dim + 1 : Dim + 1;
   using Tile = NodeTile<Dim, kFields>;
   auto tile = std::make_unique<Tile>();
   const double inverse_d = apic_inverse_d(grid.spacing());
-  if (at_particles) at_particles->resize(P.size());
+  if (at_particles && runs.empty()) at_particles->resize(P.size());  // a part's caller sized it
   constexpr auto fields = [] {
     std::array<TileField, kFields> f{};
     for (int a = 0; a < Dim; ++a) f[static_cast<std::size_t>(a)] = {TileField::component, a};
@@ -297,7 +349,7 @@ void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const Node
         else
           each(p);
       },
-      subset);
+      subset, runs);
 }
 
 }  // namespace detail
@@ -307,30 +359,34 @@ void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const Node
 // each(p, grad v_p) (full), each(p, div v_p) (divergence) or each(p) (none) for the caller to
 // keep what it needs. With `walls`, the nodes beyond the walls are read as their mirrors
 // (boundary/wall_fold.hpp); with `flip.before`, v_p is blended with FLIP (FlipBlend). Only the
-// particles of `subset` are visited.
+// particles of `subset` are visited, and with `runs` only those of the runs (a thread's part:
+// transfer/sweep_schedule.hpp; `at_particles` must then be sized already).
 template <VelocityGradient Gradient, int Dim, class Each>
 void grid_to_particles_each(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
                             const std::vector<double>* field, std::vector<double>* at_particles,
                             const std::type_identity_t<WallFold<Dim>>* walls, Each&& each,
-                            const FlipBlend<Dim>& flip = {}, const ParticleSubset& subset = {}) {
+                            const FlipBlend<Dim>& flip = {}, const ParticleSubset& subset = {},
+                            std::span<const ParticleRun> runs = {}) {
   if (!field != !at_particles) throw std::invalid_argument("grid_to_particles: a field to sample needs its output");
   if (flip.before)
-    detail::grid_to_particles<Gradient, true>(P, grid, nodes, field, at_particles, walls, each, flip, subset);
+    detail::grid_to_particles<Gradient, true>(P, grid, nodes, field, at_particles, walls, each, flip, subset, runs);
   else
-    detail::grid_to_particles<Gradient, false>(P, grid, nodes, field, at_particles, walls, each, flip, subset);
+    detail::grid_to_particles<Gradient, false>(P, grid, nodes, field, at_particles, walls, each, flip, subset, runs);
 }
 
 // Interpolates the node velocities back: v_p, C_p and grad v_p (one per particle, resized), and,
 // with `field`, sum_i w_ip field_i per particle into `at_particles` (resized) in the same sweep;
-// with `walls`, the walls' mirror condition; with `flip.before`, the FLIP blend.
+// with `walls`, the walls' mirror condition; with `flip.before`, the FLIP blend; with `runs`, a
+// thread's part (grad_v and at_particles sized by the caller).
 template <int Dim>
 void grid_to_particles(Particles<Dim>& P, const BlockGrid<Dim>& grid, const NodeFields<Dim>& nodes,
                        std::vector<Mat<Dim>>& grad_v, const std::vector<double>* field = nullptr,
                        std::vector<double>* at_particles = nullptr, const WallFold<Dim>* walls = nullptr,
-                       const FlipBlend<Dim>& flip = {}) {
-  grad_v.resize(P.size());
+                       const FlipBlend<Dim>& flip = {}, std::span<const ParticleRun> runs = {}) {
+  if (runs.empty()) grad_v.resize(P.size());
   grid_to_particles_each<VelocityGradient::full>(
-      P, grid, nodes, field, at_particles, walls, [&](std::size_t p, const Mat<Dim>& g) { grad_v[p] = g; }, flip);
+      P, grid, nodes, field, at_particles, walls, [&](std::size_t p, const Mat<Dim>& g) { grad_v[p] = g; }, flip, {},
+      runs);
 }
 
 }  // namespace suite::mpm2grid

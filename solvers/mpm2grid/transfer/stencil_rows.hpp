@@ -12,6 +12,7 @@
 // index.
 #include <array>
 #include <cstring>
+#include <span>
 #include <utility>
 
 #include "solvers/mpm2grid/grid/node_tile.hpp"
@@ -346,24 +347,32 @@ void scatter_apic(NodeTile<Dim, Fields>& tile, const StencilRows<Dim>& s, int fi
 // `tile` covering each one's group: where the group changes, leave() is called for the old group
 // (if any) and enter() after the tile covers the new one; leave() once more at the end. Particles
 // in group order (transfer/particle_order.hpp) make one enter/leave per group; groups without a
-// particle of the subset are not entered.
+// particle of the subset are not entered. With `runs`, only the particles of those runs, run after
+// run (a thread's part of a sweep: transfer/sweep_schedule.hpp).
 template <int Dim, int Fields, class Enter, class Leave, class Body>
 void sweep_groups(const std::vector<Vec<Dim>>& x, const BlockGrid<Dim>& grid, NodeTile<Dim, Fields>& tile,
-                  Enter&& enter, Leave&& leave, Body&& body, const ParticleSubset& subset = {}) {
+                  Enter&& enter, Leave&& leave, Body&& body, const ParticleSubset& subset = {},
+                  std::span<const ParticleRun> runs = {}) {
   using Tile = NodeTile<Dim, Fields>;
   const double h = grid.spacing();
   tile.release();
-  for (std::size_t p = 0; p < x.size(); ++p) {
-    if (!subset.has(p)) continue;
-    const StencilRows<Dim> s(x[p], h);
-    const Index<Dim> g = Tile::group_of(s.base);
-    if (!tile.covers(g)) {
-      if (tile.covering()) leave();
-      tile.cover(grid, g);
-      enter();
+  const auto sweep = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) {
+      if (!subset.has(p)) continue;
+      const StencilRows<Dim> s(x[p], h);
+      const Index<Dim> g = Tile::group_of(s.base);
+      if (!tile.covers(g)) {
+        if (tile.covering()) leave();
+        tile.cover(grid, g);
+        enter();
+      }
+      body(p, s, Tile::first_index(s.base, g));
     }
-    body(p, s, Tile::first_index(s.base, g));
-  }
+  };
+  if (runs.empty())
+    sweep(0, x.size());
+  else
+    for (const ParticleRun& r : runs) sweep(r.begin, r.end);
   if (tile.covering()) leave();
 }
 
