@@ -82,9 +82,13 @@ struct Walls {
     return f;
   }
 
-  void apply(const BlockGrid<Dim>& grid, NodeFields<Dim>& nodes) const {
+  // The walls' conditions on the velocities of the nodes on or beyond them (with threads, each
+  // thread a share of the nodes).
+  void apply(const BlockGrid<Dim>& grid, NodeFields<Dim>& nodes, int threads = 1) const {
     const double tol = 1e-9 * grid.spacing();
-    for (long i = 0; i < static_cast<long>(nodes.mass.size()); ++i) {
+    const long n = static_cast<long>(nodes.mass.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+    for (long i = 0; i < n; ++i) {
       if (!(nodes.mass[i] > 0)) continue;
       const Vec<Dim> x = grid.position(i);
       for (int d = 0; d < Dim; ++d)

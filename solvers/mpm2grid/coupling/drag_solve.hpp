@@ -19,10 +19,12 @@ enum class DragScheme { lumped, explicit_euler, consistent };
 
 // Sets soil.velocity and water.velocity on every node with mass (scheme: lumped or explicit_euler).
 // The momentum and force sums already hold gravity (P2G spreads m_p g with the other forces) and
-// the soil's loads.
+// the soil's loads. With threads, each solves a share of the nodes.
 template <int Dim>
-void solve_grid_velocities(NodeFields<Dim>& soil, NodeFields<Dim>& water, double dt, DragScheme scheme) {
+void solve_grid_velocities(NodeFields<Dim>& soil, NodeFields<Dim>& water, double dt, DragScheme scheme,
+                           int threads = 1) {
   const std::size_t n = soil.mass.size();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::size_t i = 0; i < n; ++i) {
     const double ms = soil.mass[i], mw = water.mass[i], d = soil.drag[i];
     const Vec<Dim> bs = soil.momentum[i] + dt * soil.force[i];

@@ -279,7 +279,9 @@ void Simulation<Dim>::particles_to_grids(double dt) {
   if (s_.buoyancy) {
     // The node pressures of all the water, free and pore.
     auto& p = water_nodes_.pressure;
-    for (std::size_t i = 0; i < grid_.nodes(); ++i) {
+    const std::size_t n = grid_.nodes();
+#pragma omp parallel for schedule(static) num_threads(s_.threads) if (s_.threads > 1)
+    for (std::size_t i = 0; i < n; ++i) {
       const double m = water_nodes_.mass[i] + (free ? free_nodes_.mass[i] : 0.0);
       p[i] = m > 0 ? (p[i] + (free ? free_nodes_.pressure[i] : 0.0)) / m : 0.0;
     }
@@ -336,11 +338,11 @@ void Simulation<Dim>::step(double dt) {
   const double t_next = time_ + dt;
   {
     auto timed = phase(StepPhase::boundary);
-    water_walls_.apply(grid_, water_nodes_);
-    s_.walls.apply(grid_, soil_nodes_);
+    water_walls_.apply(grid_, water_nodes_, s_.threads);
+    s_.walls.apply(grid_, soil_nodes_, s_.threads);
     if (inlet_) inlet_->impose(grid_, water_nodes_, t_next);
     if (s_.free_water_field) {
-      water_walls_.apply(grid_, free_nodes_);
+      water_walls_.apply(grid_, free_nodes_, s_.threads);
       if (inlet_) inlet_->impose(grid_, free_nodes_, t_next);
     }
   }
@@ -382,7 +384,7 @@ template <int Dim>
 void Simulation<Dim>::solve_grid(double dt) {
   if (newton_) return solve_grid_implicit(dt);
   if (!consistent_) {
-    solve_grid_velocities(soil_nodes_, water_nodes_, dt, s_.drag);
+    solve_grid_velocities(soil_nodes_, water_nodes_, dt, s_.drag, s_.threads);
     free_water_velocities(dt);
     return;
   }
@@ -484,7 +486,9 @@ template <int Dim>
 void Simulation<Dim>::velocities_before(StepPhase p2g, NodeFields<Dim>& before) {
   {
     auto timed = phase(p2g);
-    for (std::size_t i = 0; i < grid_.nodes(); ++i)
+    const std::size_t n = grid_.nodes();
+#pragma omp parallel for schedule(static) num_threads(s_.threads) if (s_.threads > 1)
+    for (std::size_t i = 0; i < n; ++i)
       before.velocity[i] = before.mass[i] > 0 ? Vec<Dim>(before.momentum[i] / before.mass[i]) : Vec<Dim>(Vec<Dim>::Zero());
   }
   if (dd_) {
@@ -619,9 +623,9 @@ void Simulation<Dim>::carry_suspended() {
   // P2G spread back as momentum: a cluster of grains on the dam's face ran away to 58 m/s in 22
   // steps, example 2 at h = 0.0625 m after 6.4 s), and a suspension's grains need none. A grain
   // that no free water reaches moves with the soil's velocity weighted the same way (by the soil's
-  // fill, its mass complete on ghost nodes too): the soil grid's own velocity there is mostly the
-  // bed's light surface nodes (the bed's stresses over a kernel tail's mass), which threw grains
-  // lying on the dam's face up at 24-123 m/s (example 2 at h = 0.0625 m blew up after 6.28 s).
+  // fill, its mass complete on ghost nodes too): with the bed it lies on, not with the bed's light
+  // surface nodes (the bed's stresses over a kernel tail's mass), which a plain G2P reads at a
+  // grain's place above the bed.
   const auto carry = [&](const std::vector<Vec<Dim>>& velocity, const std::vector<double>& weight,
                          const WallFold<Dim>& walls) {
     carrier_.velocity.resize(grid_.nodes());
