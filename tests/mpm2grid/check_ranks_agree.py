@@ -12,7 +12,10 @@ of the sort's threshold (1/2) can be sorted differently on the two runs for a st
 1.5e-9 in the kinetic energy at one sample of the dam scene, gone at the next. Such a run sets
 RANKS_AGREE_TOLERANCE (1e-7: still five orders of magnitude below a wrong halo's percent).
 Threads inside a rank change the order of P2G's sums the same way (threads_agree.sh); a second
-run on one rank with threads sets SECOND_RANKS=1 (default 2).
+run on one rank with threads sets SECOND_RANKS=1 (default 2), and OVERSUBSCRIBED=1 where the
+second run has more threads than the machine has cores: the kernel then preempts a rank between
+its phases' clocks (2 ranks x 2 threads on 2 cores: phases 7% short of the step), so the phases'
+sum is not checked there (the ranks_agree tests check it).
   check_ranks_agree.py ONE_RANK_DIR TWO_RANK_DIR"""
 import csv
 import glob
@@ -94,7 +97,8 @@ for d, ranks in ((one, 1), (two, second_ranks)):
         if wait:
             assert wait["max_s"] <= v["max_s"] * (1 + 1e-9), f"{d}/run.json: step/{name} waited longer than it ran"
     total = sum(v["mean_s"] for v in parts.values())
-    assert abs(total - step["mean_s"]) <= 0.05 * step["mean_s"], (
+    oversubscribed = d == two and os.environ.get("OVERSUBSCRIBED") == "1"
+    assert oversubscribed or abs(total - step["mean_s"]) <= 0.05 * step["mean_s"], (
         f"{d}/run.json: the step's phases add up to {total:.4f} s, the step took {step['mean_s']:.4f} s (> 5% apart)")
     assert ranks == 1 or phases.get("step/halo sum/wait", {}).get("max_s", 0) > 0, f"{d}/run.json: no halo wait"
     print(f"{ranks} rank(s): {len(parts)} step phases add up to {total:.4f} s of the step's {step['mean_s']:.4f} s")

@@ -17,6 +17,12 @@ OMP_NUM_THREADS=3 ${LAUNCH:-} "$exe" "$@" --out "$work/three" --log-level warn
 grep -q '"threads_per_rank": 3' "$work/three/run.json"
 "$here/same_outputs.sh" "$work/two" "$work/three"
 echo "2 and 3 threads: outputs identical"
-"$python" "$here/check_ranks_agree.py" "$work/one" "$work/two"
+# More threads than cores (2 ranks x 2 threads on the 2-core test machine) preempt the ranks between
+# their phases' clocks: the phases' sum is not checked then (check_ranks_agree.py).
+ranks=1
+[ -n "${LAUNCH:-}" ] && ranks=2
+over=0
+[ $((ranks * 2)) -gt "$(nproc)" ] && over=1
+OVERSUBSCRIBED=$over "$python" "$here/check_ranks_agree.py" "$work/one" "$work/two"
 OMP_NUM_THREADS=4,2 "$here/../support/expect_input_error.sh" "OMP_NUM_THREADS = '4,2'|whole number of threads" \
   "$exe" "$@" --out "$work/bad" --log-level warn
