@@ -31,47 +31,64 @@
 
 namespace suite::mpm2grid {
 
-// Activates the grid blocks the particles' stencils touch. With `groups`, also gives each
-// particle's group (grid/node_tile.hpp) as the index of its block (one entry per particle).
-template <int Dim>
-void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, std::vector<int>* groups = nullptr) {
+namespace detail {
+
+// For particles begin .. end - 1 in order: reach(b) for each block b their stencils reach, once per
+// group met (its return value, >= 0, stands for the block until the group changes), and each(p,
+// first) with `first` what reach() returned for the particle's group block.
+template <int Dim, class Reach, class Each>
+void sweep_reached_blocks(const Particles<Dim>& particles, std::size_t begin, std::size_t end, double h, Reach&& reach,
+                          Each&& each) {
   using Grid = BlockGrid<Dim>;
-  const double h = grid.spacing();
-  if (groups) groups->resize(particles.size());
-  // The indices of the blocks g + {0, 1}^Dim around the current group g (offset bit d: the next
-  // block along axis d; -1: not activated by this sweep yet). The particles come mostly in group
-  // order, so a block's hash lookup happens about once per group, not once per particle; blocks
-  // are activated in the same order as touching each particle's stencil would.
+  // The blocks g + {0, 1}^Dim around the current group g (offset bit d: the next block along axis
+  // d; -1: not reached by this sweep yet). The particles come mostly in group order, so a block is
+  // reached about once per group, not once per particle, and in the same order as touching each
+  // particle's stencil would.
   std::array<int, Grid::kStencilBlocks> around{};
   typename Grid::Key group = 0;
   Index<Dim> previous{};
-  int first = -1;  // the index of the current particle's group block
-  for (std::size_t p = 0; p < particles.size(); ++p) {
+  int first = -1;  // for the current particle's group block
+  for (std::size_t p = begin; p < end; ++p) {
     const Index<Dim> base = stencil_base(particles.x[p], h);
-    int moved = p == 0;  // compared per component (not as arrays: a store-forwarding stall)
+    int moved = p == begin;  // compared per component (not as arrays: a store-forwarding stall)
     for (int d = 0; d < Dim; ++d) moved |= base[d] ^ previous[d];
     if (moved) {
       const Index<Dim> g = Grid::block_holding(base);
-      if (p == 0 || Grid::key(g) != group) {
+      if (p == begin || Grid::key(g) != group) {
         group = Grid::key(g);
         around.fill(-1);
       }
       // The stencil reaches the next block along the axes where its last node base + 3 lies
       // there; the blocks g + corner for the corners within those axes, in ascending corner
       // order (as BlockGrid::touch()).
-      int reach = 0;
-      for (int d = 0; d < Dim; ++d) reach |= (base[d] + 3 - g[d] * Grid::kSide >= Grid::kSide) << d;
+      int reach_axes = 0;
+      for (int d = 0; d < Dim; ++d) reach_axes |= (base[d] + 3 - g[d] * Grid::kSide >= Grid::kSide) << d;
       for (int corner = 0; corner < Grid::kStencilBlocks; ++corner) {
-        if ((corner & ~reach) != 0 || around[static_cast<std::size_t>(corner)] >= 0) continue;
+        if ((corner & ~reach_axes) != 0 || around[static_cast<std::size_t>(corner)] >= 0) continue;
         Index<Dim> b = g;
         for (int d = 0; d < Dim; ++d) b[d] += (corner >> d) & 1;
-        around[static_cast<std::size_t>(corner)] = grid.activate(b);
+        around[static_cast<std::size_t>(corner)] = reach(b);
       }
       first = around[0];
       previous = base;
     }
-    if (groups) (*groups)[p] = first;
+    each(p, first);
   }
+}
+
+}  // namespace detail
+
+// Activates the grid blocks the particles' stencils touch, a block's hash lookup about once per
+// group. With `groups`, also gives each particle's group (grid/node_tile.hpp) as the index of its
+// block (one entry per particle).
+template <int Dim>
+void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, std::vector<int>* groups = nullptr) {
+  if (groups) groups->resize(particles.size());
+  detail::sweep_reached_blocks(
+      particles, 0, particles.size(), grid.spacing(), [&](const Index<Dim>& b) { return grid.activate(b); },
+      [&](std::size_t p, int first) {
+        if (groups) (*groups)[p] = first;
+      });
 }
 
 // touch_blocks over threads, in three passes that activate the same blocks in the same order (the
@@ -81,32 +98,14 @@ void touch_blocks(const Particles<Dim>& particles, BlockGrid<Dim>& grid, std::ve
 // (find_groups).
 template <int Dim>
 void blocks_reached(const Particles<Dim>& particles, ParticleRun run, double h, std::vector<Index<Dim>>& out) {
-  using Grid = BlockGrid<Dim>;
   out.clear();
-  std::array<bool, Grid::kStencilBlocks> listed{};  // per corner of the current group: listed already
-  typename Grid::Key group = 0;
-  Index<Dim> previous{};
-  for (std::size_t p = run.begin; p < run.end; ++p) {
-    const Index<Dim> base = stencil_base(particles.x[p], h);
-    int moved = p == run.begin;
-    for (int d = 0; d < Dim; ++d) moved |= base[d] ^ previous[d];
-    if (!moved) continue;
-    const Index<Dim> g = Grid::block_holding(base);
-    if (p == run.begin || Grid::key(g) != group) {
-      group = Grid::key(g);
-      listed.fill(false);
-    }
-    int reach = 0;
-    for (int d = 0; d < Dim; ++d) reach |= (base[d] + 3 - g[d] * Grid::kSide >= Grid::kSide) << d;
-    for (int corner = 0; corner < Grid::kStencilBlocks; ++corner) {
-      if ((corner & ~reach) != 0 || listed[static_cast<std::size_t>(corner)]) continue;
-      Index<Dim> b = g;
-      for (int d = 0; d < Dim; ++d) b[d] += (corner >> d) & 1;
-      out.push_back(b);
-      listed[static_cast<std::size_t>(corner)] = true;
-    }
-    previous = base;
-  }
+  detail::sweep_reached_blocks(
+      particles, run.begin, run.end, h,
+      [&](const Index<Dim>& b) {
+        out.push_back(b);
+        return 0;  // listed
+      },
+      [](std::size_t, int) {});
 }
 
 template <int Dim>
