@@ -26,9 +26,10 @@
 // first guess. R is in m/s; its Jacobian I + dt^2 (M + dt D)^-1 K (K the stiffness) has the drag's
 // node-local block inverted in G, so GMRES needs no preconditioner for the drag, but its
 // iterations grow with the cells a wave crosses in a step (docs/mpm2grid.md, "Implicit forces").
-// A trial velocity that inverts a soil particle (det(I + dt grad v) <= 0) lies outside R's
-// domain: the line search shortens its step. Every residual evaluation is COLLECTIVE (the halo
-// copy of the trial velocities, the halo sum of the forces, one reduction).
+// A trial velocity that inverts a soil particle (det(I + dt grad v) <= 0) or under- or overflows
+// a water particle's exp(dt div v) J lies outside R's domain: the line search shortens its step.
+// Every residual evaluation is COLLECTIVE (the halo copy of the trial velocities, the halo sum of
+// the forces, one reduction).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -75,6 +76,11 @@ void Simulation<Dim>::solve_grid_implicit(double dt) {
   s.soil_base = soil_nodes_.force;
   s.water_base = water_nodes_.force;
   make_probe(soil_, s.soil_probe);
+  // The grains the excess-stress erosion detached: stress-free through the step, as the particle
+  // update leaves them (F = I).
+  s.stress_free.assign(soil_.size(), 0);
+  if (bed_shear_)
+    for (std::size_t p = 0; p < soil_.size(); ++p) s.stress_free[p] = bed_shear_->suspended(soil_, p);
   make_probe(water_, s.water_probe);
   // The stresses' node sums: sized once a step; each evaluation zeroes the forces alone (the
   // probes' mass, momentum and pressure sums are zero, and nothing reads them).
@@ -89,7 +95,7 @@ void Simulation<Dim>::solve_grid_implicit(double dt) {
   const auto held = [&](double J) { return eos.unclamped_pressure(J) < eos.min_pressure; };
   s.water_held.resize(water_.size());
   for (std::size_t p = 0; p < water_.size(); ++p) s.water_held[p] = held(water_.J[p]);
-  // The first guess: the explicit update W(G(0)); where that inverts a soil particle (a long
+  // The first guess: the explicit update W(G(0)); where that lies outside R's domain (a long
   // step's explicit forces overshoot) and the solve cannot even start, zero.
   implicit_residual(x.data(), r.data(), dt, t_next);
   for (std::size_t k = 0; k < n; ++k) x[k] = -r[k];
@@ -162,7 +168,7 @@ void Simulation<Dim>::constrain(double t_next) {
 }
 
 // r = v - W(G(v)) for the unknowns x (module comment); leaves W(G(v)) in the node velocities.
-// False (on every rank) where the trial velocities invert a soil particle.
+// False (on every rank) where the trial velocities lie outside R's domain (trial_forces).
 template <int Dim>
 bool Simulation<Dim>::implicit_residual(const double* x, double* r, double dt, double t_next) {
   set_unknown_velocities(x);
@@ -174,7 +180,8 @@ bool Simulation<Dim>::implicit_residual(const double* x, double* r, double dt, d
 }
 
 // The node forces f(v) of the velocities in the node fields (on this rank's owned slots), added
-// to the fixed ones in the fields' force sums. False (on every rank) where the trial velocities invert a soil particle.
+// to the fixed ones in the fields' force sums. False (on every rank) where the trial velocities
+// lie outside R's domain (module comment).
 template <int Dim>
 SUITE_VECTOR_CLONES bool Simulation<Dim>::trial_forces(double dt) {
   ImplicitState<Dim>& s = implicit_;
@@ -182,13 +189,19 @@ SUITE_VECTOR_CLONES bool Simulation<Dim>::trial_forces(double dt) {
   s.water_pressure.resize(water_.size());
   s.water_trial_J.resize(water_.size());
   const WeaklyCompressibleWater& eos = s_.water.eos;
-  double inverted = 0;  // soil particles with det(I + dt grad v) <= 0
+  // Particles the trial velocities take outside R's domain: soil with det(I + dt grad v) <= 0,
+  // water whose J^ p(J^) is no number.
+  double outside = 0;
   grid_to_particles_each<VelocityGradient::divergence>(
       s.water_probe, grid_, water_nodes_, nullptr, nullptr, &water_fold_, [&](std::size_t p, double div) {
         const double trial = std::exp(dt * div) * water_.J[p];
         s.water_trial_J[p] = trial;
         // The Kirchhoff pressure J^ p(J^): P2G multiplies by the probe's J, 1.
-        s.water_pressure[p] = trial * (s.water_held[p] ? eos.min_pressure : eos.unclamped_pressure(trial));
+        // (Held at a zero clamp: no stress, however far a splash's particle has spread.)
+        s.water_pressure[p] = s.water_held[p] ? (eos.min_pressure == 0 ? 0.0 : trial * eos.min_pressure)
+                                              : trial * eos.unclamped_pressure(trial);
+        // exp(dt div v) under- or overflowed (a wild first guess: 0 * p(0) is NaN).
+        if (!std::isfinite(s.water_pressure[p])) ++outside, s.water_pressure[p] = 0;
       });
   s.soil_trial.resize(soil_.size());
   s.soil_stress.resize(soil_.size());
@@ -196,7 +209,13 @@ SUITE_VECTOR_CLONES bool Simulation<Dim>::trial_forces(double dt) {
                                                  [&](std::size_t p, const Mat<Dim>& grad_v) {
                                                    s.soil_trial[p] = trial_deformation(grad_v, soil_.F[p], dt);
                                                    const Mat<Dim> step = Mat<Dim>::Identity() + dt * grad_v;
-                                                   inverted += !(step.determinant() > 0);
+                                                   // A detached grain (excess-stress erosion) carries no
+                                                   // stress: its deformation does not matter.
+                                                   if (s.stress_free[p]) {
+                                                     s.soil_stress[p] = Mat<Dim>::Zero();
+                                                     return;
+                                                   }
+                                                   outside += !(step.determinant() > 0);
                                                    s.soil_stress[p] = step.inverse().transpose();
                                                  });
   trial_stresses(dt);
@@ -211,7 +230,7 @@ SUITE_VECTOR_CLONES bool Simulation<Dim>::trial_forces(double dt) {
     water_nodes_.force[i] = s.water_base[i] + s.water_force.force[i];
     soil_nodes_.force[i] = s.soil_base[i] + s.soil_force.force[i];
   }
-  return max_over_ranks(inverted) == 0;
+  return max_over_ranks(outside) == 0;
 }
 
 // The soil's stresses tau(F^) (I + dt grad v)^-T from the trial F^ in soil_trial and the
@@ -223,7 +242,7 @@ SUITE_INLINE_CALLS void Simulation<Dim>::trial_stresses(double dt) {
   const HenckyDruckerPrager& material = s_.soil.material;
   if (!s_.plastic_solve) {
     for (std::size_t p = 0; p < soil_.size(); ++p)
-      s.soil_stress[p] = material.template kirchhoff<Dim>(s.soil_trial[p]) * s.soil_stress[p];
+      if (!s.stress_free[p]) s.soil_stress[p] = material.template kirchhoff<Dim>(s.soil_trial[p]) * s.soil_stress[p];
     return;
   }
   constexpr int kBatch = 4;
@@ -236,12 +255,15 @@ SUITE_INLINE_CALLS void Simulation<Dim>::trial_stresses(double dt) {
       const bool real = k < count;
       trial[k] = real ? s.soil_trial[p] : Mat<Dim>::Identity();
       log_jp[k] = real ? soil_.log_jp[p] : 0.0;
-      saturation[k] = real ? soil_.saturation[p] : 0.0;
+      // With the excess-stress erosion the cohesion does not fall with the saturation (as in the
+      // particle update).
+      saturation[k] = real && !s_.erosion.on ? soil_.saturation[p] : 0.0;
     }
     ReturnResult<Dim> r[kBatch];
     material.template project_all<Dim, kBatch>(trial, log_jp, saturation, r, dt);
     for (int k = 0; k < count; ++k) {
       const std::size_t p = first + static_cast<std::size_t>(k);
+      if (s.stress_free[p]) continue;  // zero already
       const Mat<Dim> tau = r[k].has_stress ? r[k].stress : material.template kirchhoff<Dim>(r[k].F);
       s.soil_stress[p] = tau * s.soil_stress[p];
     }

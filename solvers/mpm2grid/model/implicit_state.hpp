@@ -42,6 +42,9 @@ struct ImplicitState {
   // min_pressure for the whole Newton solve, 0 where it follows the unclamped law (the clamp's
   // kink inside the solve stalls Newton).
   std::vector<char> water_held;
+  // 1 for the soil particles the excess-stress erosion detached (suspended) at the step's start:
+  // they carry no stress in the solve, as in the particle update.
+  std::vector<char> stress_free;
   NodeFields<Dim> soil_force, water_force;  // the stresses' node forces, N
   NewtonKrylovStats last;                   // the last step's last solve
   int passes = 0;                           // the last step's clamp passes (solves)

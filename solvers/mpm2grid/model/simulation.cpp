@@ -35,8 +35,6 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
   if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, grid_);
   if (s_.erosion.on && !s_.bed_shear.on())
     throw std::invalid_argument("the excess-stress erosion needs the bed shear (a Manning n > 0)");
-  if (s_.erosion.on && s_.forces == ForceScheme::implicit_end)
-    throw std::invalid_argument("the excess-stress erosion works with the explicit forces");
   if (s_.free_water_field && (s_.mixture || s_.forces == ForceScheme::implicit_end))
     throw std::invalid_argument("the free water's own field works without the mixture and with the explicit forces");
   if (s_.bed_shear.on())

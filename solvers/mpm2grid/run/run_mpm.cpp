@@ -218,6 +218,8 @@ class MpmRun {
     // The last blow-up check scanned the particles as they are now: its extremes save a scan.
     StepLimit limit = sim_.stable_dt(std::exchange(extremes_, std::nullopt));
     checks.reset();
+    // The step the scene's limits allow (the floor of the cuts below is a thousandth of it).
+    const double allowed = limit.dt;
     // The implicit forces' step after a Newton-Krylov solve failed: halved at each failure, it
     // grows back by 1.25 a step.
     if (p_.dt_cap < limit.dt)
@@ -234,7 +236,9 @@ class MpmRun {
           break;
         } catch (const ImplicitSolveFailed& failed) {
           // Nothing of the step's state has changed before the solve: the step is taken again.
-          if (dt < 1e-3 * limit.dt)
+          // Against the limits, not the cut step: steps that each fail once and pass at half
+          // the dt would otherwise halve it for ever.
+          if (dt < 1e-3 * std::min(allowed, to_event))
             throw InputError(fmt::format("{}; it failed down to dt = {:.4g} s, a thousandth of the step the scene's "
                                          "limits allow: check the scene's materials and walls",
                                          failed.what(), dt));

@@ -255,9 +255,6 @@ Scene<Dim> read_scene(const config::Config& cfg) {
       root.reject("forces",
                   "the implicit forces do not include the free water's own field; drop free_water_field: "
                   "true or set forces: explicit");
-    if (sim.erosion.on)
-      root.reject("forces", "the implicit forces do not include the excess-stress erosion; set forces: explicit or "
-                            "soil.erosion: saturation_cohesion");
     const auto implicit = root.section_or_empty("implicit");
     sim.clamp_passes = static_cast<int>(implicit.integer("clamp_passes", 1, 1, 100));
     sim.plastic_solve = implicit.choice("plasticity", {"in_solve", "after_solve"}, "in_solve") == "in_solve";
