@@ -32,9 +32,12 @@ done
   # node_scaling needs a many-core node: run_node_scaling.sh there, node_scaling.py anywhere;
   # comm_model is comm_model.py on node_scaling.csv and message_counts.csv; implicit_forces_h0.25 is
   # DAM_SPACING=0.25 REPEATS=1 NAME=implicit_forces_h0.25 run_implicit_forces.sh (about 8 min);
+  # implicit_forces_closure{,_h0.25} are SCENES=example2_closure NAME=... run_implicit_forces.sh
+  # (REPEATS=3, about 5 min; DAM_SPACING=0.25 REPEATS=1, about 15 min);
   # dam_convergence_bed_shear is run_dam_convergence.sh with the NAME and SCENE_ARGS its header gives.
   for b in particle_step table_3_4_scaling message_counts node_scaling comm_model martin_moyce dam_convergence \
-    dam_convergence_bed_shear drag_stability soil_stiffness granular_collapse implicit_forces implicit_forces_h0.25; do
+    dam_convergence_bed_shear drag_stability soil_stiffness granular_collapse implicit_forces implicit_forces_h0.25 \
+    implicit_forces_closure implicit_forces_closure_h0.25; do
     if [ -f "$out/$b.md" ]; then
       echo
       sed 's/^## /## /' "$out/$b.md"
