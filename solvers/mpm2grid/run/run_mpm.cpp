@@ -281,8 +281,13 @@ class MpmRun {
       const bool finite = worst[3 * k] == 0;
       const double speed = worst[3 * k + 1];
       const char* species = k == 0 ? "water" : "soil";
-      const auto where = fmt::format("the run blew up at step {} (t = {:.6g} s, dt = {:.4g} s limited by {})",
-                                     sim_.steps(), sim_.time(), dt, limit.limiter);
+      // A step cut to land on a sample, output or end time names the limit it was cut from.
+      const auto limited = dt < limit.dt
+                               ? fmt::format("cut to land on a sample or output time from {:.4g} s limited by {}",
+                                             limit.dt, limit.limiter)
+                               : fmt::format("limited by {}", limit.limiter);
+      const auto where = fmt::format("the run blew up at step {} (t = {:.6g} s, dt = {:.4g} s {})", sim_.steps(),
+                                     sim_.time(), dt, limited);
       const auto fix = fmt::format("the last good checkpoint is kept in {}; lower time.cfl or time.dt_max{}",
                                    checkpoints_.string(),
                                    scene_.simulation.drag == DragScheme::explicit_euler
