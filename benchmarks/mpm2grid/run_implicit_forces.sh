@@ -91,7 +91,7 @@ done
 {
   echo "## Explicit against implicit forces, $(echo $run_scenes) at $dam_spacing m: accuracy against wall time (run_implicit_forces.sh)"
   echo
-  provenance "$good/run.json"
+  provenance "${good:-$run}/run.json"  # the last run that finished (any run where none did)
   echo
   declare -A described=([water_column]="the water column at a / 16 to 0.18 s"
     [example2]="example 2 at grid.spacing $dam_spacing m to $dam_end s"

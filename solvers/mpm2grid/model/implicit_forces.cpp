@@ -79,7 +79,7 @@ void Simulation<Dim>::solve_grid_implicit(double dt) {
   // The grains the excess-stress erosion detached: stress-free through the step, as the particle
   // update leaves them (F = I).
   s.stress_free.assign(soil_.size(), 0);
-  if (bed_shear_)
+  if (s_.erosion.on)
     for (std::size_t p = 0; p < soil_.size(); ++p) s.stress_free[p] = bed_shear_->suspended(soil_, p);
   make_probe(water_, s.water_probe);
   // The stresses' node sums: sized once a step; each evaluation zeroes the forces alone (the
