@@ -3,10 +3,13 @@
 // exist only in blocks of 4^Dim nodes that some particle's B-spline stencil touches, found from
 // the particles every step, never a dense box over the domain. Node (i, j[, k]) sits at
 // (i h, j h[, k h]); block b holds nodes 4 b .. 4 b + 3 per axis. Both species' grids use the
-// same blocks (co-located nodes), each with its own node fields (NodeFields).
+// same blocks (co-located nodes), each with its own node fields (NodeFields). A block's index is
+// looked up in an array over a box (the scene's walls; set_dense_box) and, outside it, in a hash
+// table.
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
@@ -31,8 +34,34 @@ class BlockGrid {
 
   // Drops every block (keeps the storage for the next step).
   void clear() {
+    for (const Index<Dim>& b : coords_)
+      if (const long i = dense_entry(b); i >= 0) dense_[static_cast<std::size_t>(i)] = -1;
     coords_.clear();
     lookup_.clear();
+  }
+
+  // A box of blocks, lo .. hi per axis, where the blocks' indices are looked up in an array, not
+  // in the hash table (which holds the blocks outside it): the blocks a scene's walls enclose.
+  // Refused (the hash table alone, as without a box) where the box has more than kDenseBlocks
+  // blocks. Set while no block is active.
+  static constexpr std::size_t kDenseBlocks = std::size_t{1} << 22;  // 16 MiB of indices
+  bool set_dense_box(const Index<Dim>& lo, const Index<Dim>& hi) {
+    if (!coords_.empty()) throw std::logic_error("BlockGrid::set_dense_box: blocks are active");
+    std::size_t count = 1;
+    for (int d = 0; d < Dim; ++d) {
+      if (hi[d] < lo[d]) return false;
+      count *= static_cast<std::size_t>(hi[d] - lo[d]) + 1;
+      if (count > kDenseBlocks) return false;
+    }
+    box_lo_ = lo;
+    std::size_t stride = 1;
+    for (int d = 0; d < Dim; ++d) {
+      box_size_[d] = hi[d] - lo[d] + 1;
+      box_stride_[d] = stride;
+      stride *= static_cast<std::size_t>(box_size_[d]);
+    }
+    dense_.assign(count, -1);
+    return true;
   }
 
   // The indices of the 2^Dim blocks a stencil may touch, in corner order (-1: not active). A
@@ -52,22 +81,26 @@ class BlockGrid {
 
   // Activates one block (if it is not active yet) and returns its index.
   int activate(const Index<Dim>& b) {
-    const auto [it, fresh] = lookup_.try_emplace(pack(b), static_cast<int>(coords_.size()));
-    if (fresh) coords_.push_back(b);
+    const auto fresh = static_cast<int>(coords_.size());
+    if (const long i = dense_entry(b); i >= 0) {
+      int& index = dense_[static_cast<std::size_t>(i)];
+      if (index < 0) index = fresh, coords_.push_back(b);
+      return index;
+    }
+    const auto [it, added] = lookup_.try_emplace(pack(b), fresh);
+    if (added) coords_.push_back(b);
     return it->second;
   }
 
   // Index of the block with coordinates b, or -1 when it is not active.
   int find_block(const Index<Dim>& b) const {
+    if (const long i = dense_entry(b); i >= 0) return dense_[static_cast<std::size_t>(i)];
     const auto it = lookup_.find(pack(b));
     return it == lookup_.end() ? -1 : it->second;
   }
 
   // Index of the block holding `node`, or -1 when that block is not active.
-  int block_of_node(const Index<Dim>& node) const {
-    const auto it = lookup_.find(pack(block_holding(node)));
-    return it == lookup_.end() ? -1 : it->second;
-  }
+  int block_of_node(const Index<Dim>& node) const { return find_block(block_holding(node)); }
 
   // The coordinates of the block that holds `node` (active or not).
   static Index<Dim> block_holding(const Index<Dim>& node) {
@@ -189,9 +222,27 @@ class BlockGrid {
     }
   }
 
+  // The entry of block b in dense_, or -1 outside the dense box (or without one).
+  long dense_entry(const Index<Dim>& b) const {
+    if (dense_.empty()) return -1;
+    std::size_t i = 0;
+    for (int d = 0; d < Dim; ++d) {
+      const auto offset = static_cast<unsigned>(b[d] - box_lo_[d]);  // below lo: wraps past the size
+      if (offset >= static_cast<unsigned>(box_size_[d])) return -1;
+      i += offset * box_stride_[d];
+    }
+    return static_cast<long>(i);
+  }
+
   double h_;
   std::vector<Index<Dim>> coords_;
-  std::unordered_map<std::uint64_t, int> lookup_;
+  std::unordered_map<std::uint64_t, int> lookup_;  // the active blocks outside the dense box
+  // The dense box: its first block, blocks per axis, the axes' strides, and per block its index
+  // (-1: not active).
+  Index<Dim> box_lo_{};
+  std::array<int, Dim> box_size_{};
+  std::array<std::size_t, Dim> box_stride_{};
+  std::vector<int> dense_;
 };
 
 // One species' grid values, one entry per node slot.

@@ -7,9 +7,11 @@
 // energy blow-up (an explicit drag past dt = 2 tau_d, a time step past stability), caught long
 // before the state turns non-finite. The bound never falls below h / dt_max, the speed the
 // time-step control is built for, so scenes without gravity or inflow keep a sensible scale.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <vector>
 
 #include "solvers/mpm2grid/model/simulation.hpp"
 
@@ -35,10 +37,26 @@ struct ParticleScan {
   std::size_t index = 0;  // the non-finite particle, else the fastest
   double speed = 0.0;     // m/s, of the fastest (when all are finite)
 
-  static ParticleScan of(const Particles<Dim>& P) {
+  // With threads, each scans parts of kPart particles and the parts' results are taken in order:
+  // the same particle as one scan (the first of equally fast ones).
+  static ParticleScan of(const Particles<Dim>& P, int threads = 1) {
+    if (threads == 1) return of(P, {0, P.size()});
+    std::vector<ParticleScan> parts((P.size() + kPart - 1) / kPart);
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::size_t k = 0; k < parts.size(); ++k) parts[k] = of(P, {k * kPart, std::min(P.size(), (k + 1) * kPart)});
+    ParticleScan s;
+    for (const ParticleScan& part : parts) {
+      if (!part.finite) return part;
+      if (part.speed > s.speed) s = part;
+    }
+    return s;
+  }
+
+ private:
+  static ParticleScan of(const Particles<Dim>& P, ParticleRun run) {
     ParticleScan s;
     double fastest2 = -1.0;
-    for (std::size_t p = 0; p < P.size(); ++p) {
+    for (std::size_t p = run.begin; p < run.end; ++p) {
       if (!P.x[p].allFinite() || !P.v[p].allFinite()) {
         s.finite = false;
         s.index = p;

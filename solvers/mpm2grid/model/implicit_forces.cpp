@@ -220,8 +220,8 @@ SUITE_VECTOR_CLONES bool Simulation<Dim>::trial_forces(double dt) {
                                                  });
   trial_stresses(dt);
   for (auto* f : {&s.water_force, &s.soil_force}) std::fill(f->force.begin(), f->force.end(), Vec<Dim>::Zero());
-  spread(s.water_probe, {.pressure = &s.water_pressure, .walls = &water_fold_}, s.water_force);
-  spread(s.soil_probe, {.tau = &s.soil_stress, .walls = &fold_}, s.soil_force);
+  spread(s.water_probe, water_schedule_, {.pressure = &s.water_pressure, .walls = &water_fold_}, s.water_force);
+  spread(s.soil_probe, soil_schedule_, {.tau = &s.soil_stress, .walls = &fold_}, s.soil_force);
   if (dd_) {
     dd_->sum_forces_to_owners(s.water_force);
     dd_->sum_forces_to_owners(s.soil_force);

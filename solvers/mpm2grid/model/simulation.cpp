@@ -31,6 +31,15 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
       shape_fold_(settings.walls.all_slip(), grid_.spacing(), false),
       comm_(std::move(comm)) {
   if (s_.threads < 1) throw std::invalid_argument("threads per rank: give 1 or more");
+  // The blocks' indices in an array over the walls' box: the blocks any stencil of a particle
+  // inside reaches (one block past the walls) and the halo's, within two blocks of the walls.
+  double box_blocks = 1;  // (in floating point: walls far apart must not overflow an int)
+  for (int d = 0; d < Dim; ++d) box_blocks *= (s_.walls.hi[d] - s_.walls.lo[d]) / (BlockGrid<Dim>::kSide * s_.h) + 6;
+  if (box_blocks <= static_cast<double>(BlockGrid<Dim>::kDenseBlocks)) {
+    Index<Dim> lo = BlockGrid<Dim>::home_block(s_.walls.lo, s_.h), hi = BlockGrid<Dim>::home_block(s_.walls.hi, s_.h);
+    for (int d = 0; d < Dim; ++d) lo[d] -= 2, hi[d] += 2;
+    grid_.set_dense_box(lo, hi);
+  }
   if (s_.inlet) inlet_.emplace(*s_.inlet);
   if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, grid_);
   if (s_.erosion.on && !s_.bed_shear.on())
@@ -97,14 +106,21 @@ void Simulation<Dim>::build_grid() {
   grid_.clear();
   // Each species' particles are put back in group order where they drifted from it (the
   // transfers' speed; transfer/particle_order.hpp), the soil's known stresses with them.
-  std::vector<int> groups;
-  touch(water_, groups);
-  if (const auto order = group_order(groups, grid_.blocks()); !order.empty())
-    water_.for_each_array([&](auto& values) { apply_order(values, order); });
-  touch(soil_, groups);
-  if (const auto order = group_order(groups, grid_.blocks()); !order.empty()) {
-    soil_.for_each_array([&](auto& values) { apply_order(values, order); });
-    if (known_stress_.size() == soil_.size()) apply_order(known_stress_, order);
+  // The groups stay with their particles: P2G's schedules are cut from them.
+  water_schedule_.reset(), soil_schedule_.reset();
+  std::vector<int>& water_groups = water_schedule_.groups();
+  const int threads = s_.threads;
+  touch(water_, water_groups);
+  if (const auto order = group_order(water_groups, grid_.blocks(), threads); !order.empty()) {
+    water_.for_each_array([&](auto& values) { apply_order(values, order, threads); });
+    apply_order(water_groups, order, threads);
+  }
+  std::vector<int>& soil_groups = soil_schedule_.groups();
+  touch(soil_, soil_groups);
+  if (const auto order = group_order(soil_groups, grid_.blocks(), threads); !order.empty()) {
+    soil_.for_each_array([&](auto& values) { apply_order(values, order, threads); });
+    apply_order(soil_groups, order, threads);
+    if (known_stress_.size() == soil_.size()) apply_order(known_stress_, order, threads);
   }
   if (dd_) {
     timed.emplace(times_, StepPhase::halo_plan, wait_clock());
@@ -208,10 +224,10 @@ SUITE_VECTOR_CLONES void Simulation<Dim>::spread_part(const Particles<Dim>& P, c
 // (The parallel regions stay out of the vector clones: GCC compiles a region's body as a function
 // of its own, for the baseline only; each part calls the clone.)
 template <int Dim>
-void Simulation<Dim>::spread(const Particles<Dim>& P, const P2GSources<Dim>& in, NodeFields<Dim>& nodes) {
+void Simulation<Dim>::spread(const Particles<Dim>& P, ColourSchedule<Dim>& schedule, const P2GSources<Dim>& in,
+                             NodeFields<Dim>& nodes) {
   if (s_.threads == 1) return spread_part(P, in, nodes);
-  cut_by_colour(P.x, grid_.spacing(), in.subset, s_.threads, colours_, part_keys_);
-  for (const SweepParts& parts : colours_)
+  for (const SweepParts& parts : schedule.colours(grid_, in.subset, s_.threads))
     in_parts(parts, [&](std::size_t, std::span<const ParticleRun> runs) {
       P2GSources<Dim> part = in;
       part.runs = runs;
@@ -255,10 +271,10 @@ void Simulation<Dim>::particles_to_grids(double dt) {
                           .gravity = s_.gravity,
                           .before = water_before};
     if (free) water.subset = {&free_water_, 0};
-    spread(water_, water, water_nodes_);
+    spread(water_, water_schedule_, water, water_nodes_);
     if (free) {
       water.before = free_before, water.subset = {&free_water_, 1};
-      spread(water_, water, free_nodes_);
+      spread(water_, water_schedule_, water, free_nodes_);
     }
   }
   if (dd_) {
@@ -292,7 +308,7 @@ void Simulation<Dim>::particles_to_grids(double dt) {
   }
   {
     auto timed = phase(StepPhase::p2g_soil);
-    spread(soil_, soil, soil_nodes_);
+    spread(soil_, soil_schedule_, soil, soil_nodes_);
     if (s_.loads) add_loads();
   }
   if (dd_) {
@@ -759,9 +775,19 @@ template <int Dim>
 void Simulation<Dim>::remove_outflow() {
   if (!s_.walls.any_open()) return;  // a closed box (the same on every rank): nothing leaves
   Outflow<Dim> step;                 // this step's, on this rank
+  // Which particles left, looked at over the threads; most steps none has, and the particles stay
+  // as they are. Where some have, they are taken out in order.
+  const auto any_left = [&](const Particles<Dim>& P) {
+    const std::size_t n = P.size();
+    left_.resize(n);
+    std::size_t left = 0;
+#pragma omp parallel for schedule(static) reduction(+ : left) num_threads(s_.threads) if (s_.threads > 1)
+    for (std::size_t p = 0; p < n; ++p) left += left_[p] = s_.walls.left_through_open_side(P.x[p]);
+    return left > 0;
+  };
   auto keep = [&](const Particles<Dim>& species, double& species_mass) {
     return [this, &step, P = &species, mass = &species_mass](std::size_t p) {
-      if (!s_.walls.left_through_open_side(P->x[p])) return true;
+      if (!left_[p]) return true;
       *mass += P->mass[p];
       step.momentum += P->mass[p] * P->v[p];
       if (P == &soil_ && s_.erosion.on) step.shear_eroded_volume += bed_shear_->eroded_volume(soil_, p);
@@ -770,11 +796,11 @@ void Simulation<Dim>::remove_outflow() {
   };
   // The per-particle lists of this step go with their particles.
   if (dd_) {
-    water_.retain(keep(water_, step.water_mass), left_home_[0]);
-    soil_.retain(keep(soil_, step.soil_mass), left_home_[1], known_stress_);
+    if (any_left(water_)) water_.retain(keep(water_, step.water_mass), left_home_[0]);
+    if (any_left(soil_)) soil_.retain(keep(soil_, step.soil_mass), left_home_[1], known_stress_);
   } else {
-    water_.retain(keep(water_, step.water_mass));
-    soil_.retain(keep(soil_, step.soil_mass), known_stress_);
+    if (any_left(water_)) water_.retain(keep(water_, step.water_mass));
+    if (any_left(soil_)) soil_.retain(keep(soil_, step.soil_mass), known_stress_);
   }
   if (dd_) {  // the record is the same on every rank
     std::array<double, 3 + Dim> all{};

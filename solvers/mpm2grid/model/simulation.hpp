@@ -207,7 +207,10 @@ class Simulation {
   void touch_part(const Particles<Dim>& P, std::vector<Index<Dim>>& reached, ParticleRun run);
   void stresses();
   void particles_to_grids(double dt);
-  void spread(const Particles<Dim>& P, const P2GSources<Dim>& in, NodeFields<Dim>& nodes);
+  // P2G of a species' particles (or of particles in its order and places, the implicit forces'
+  // probes) with its schedule.
+  void spread(const Particles<Dim>& P, ColourSchedule<Dim>& schedule, const P2GSources<Dim>& in,
+              NodeFields<Dim>& nodes);
   void spread_part(const Particles<Dim>& P, const P2GSources<Dim>& in, NodeFields<Dim>& nodes);
   // f(k, runs) for each part k, parts taken by the threads as they come free.
   template <class F>
@@ -281,6 +284,7 @@ class Simulation {
   // Over several ranks, per water and soil particle: 1 where the step's move took it to another
   // home block (only these can have left this rank's blocks; migrate() looks up just them).
   std::array<std::vector<char>, 2> left_home_;
+  std::vector<char> left_;  // remove_outflow(): 1 per particle of a species that left the domain
   std::vector<typename BlockGrid<Dim>::Key> home_before_;  // one species' home blocks before the move
   std::optional<mpi::Comm> comm_;
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;
@@ -291,10 +295,9 @@ class Simulation {
   std::optional<Inlet<Dim>> inlet_;
   std::optional<DomainDecomposition<Dim>> dd_;
   std::optional<BedShear<Dim>> bed_shear_;
-  // With threads: the parts of a G2P or particle update, P2G's by colour, scratch for those.
+  // With threads: the parts of a G2P or particle update, each species' P2G parts by colour.
   SweepParts parts_;
-  std::vector<SweepParts> colours_;
-  std::vector<std::uint64_t> part_keys_;
+  ColourSchedule<Dim> water_schedule_, soil_schedule_;
   std::vector<std::vector<Index<Dim>>> reached_;  // touch(): the blocks each part's stencils reach
   double time_ = 0;
   long long steps_ = 0;

@@ -271,7 +271,7 @@ class MpmRun {
     // particles.
     std::array<double, 6> worst{};
     for (std::size_t k = 0; k < 2; ++k) {
-      const auto local = ParticleScan<Dim>::of(*species_list[k]);
+      const auto local = ParticleScan<Dim>::of(*species_list[k], scene_.simulation.threads);
       worst[3 * k] = local.finite ? 0.0 : 1.0;
       worst[3 * k + 1] = local.finite ? local.speed : 0.0;
       worst[3 * k + 2] = species_list[k]->size() > 0 ? 1.0 : 0.0;

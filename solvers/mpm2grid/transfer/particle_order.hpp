@@ -7,6 +7,8 @@
 // The order only changes the order of the sums onto the nodes (round-off). It is a function of
 // the particles alone (their order and positions), so that a run restarted from a checkpoint,
 // which keeps the particles in their order, reorders on the same steps as the uninterrupted run.
+#include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <vector>
 
@@ -16,29 +18,44 @@ namespace suite::mpm2grid {
 // are. Returns the permutation (new position -> old index) that makes each group's particles
 // consecutive, groups in the order of their block indices and the particles of a group in their
 // present order (a counting sort); or an empty one when the particles already come in at most a
-// quarter more runs than there are groups (then reordering costs more than it saves).
-inline std::vector<std::size_t> group_order(const std::vector<int>& group, std::size_t blocks) {
-  std::vector<std::size_t> start(blocks + 1, 0);
-  std::size_t runs = 0, groups = 0;
-  for (std::size_t p = 0; p < group.size(); ++p) {
-    if (start[static_cast<std::size_t>(group[p]) + 1]++ == 0) ++groups;
-    if (p == 0 || group[p] != group[p - 1]) ++runs;
-  }
+// quarter more runs than there are groups (then reordering costs more than it saves). `threads`
+// count the runs and groups.
+inline std::vector<std::size_t> group_order(const std::vector<int>& group, std::size_t blocks, int threads = 1) {
+  // A group's first particle starts a run: marking the groups of the runs' first particles finds
+  // every group.
+  std::vector<char> seen(blocks, 0);
+  const std::size_t n = group.size();
+  std::size_t runs = 0;
+#pragma omp parallel for schedule(static) reduction(+ : runs) num_threads(threads) if (threads > 1)
+  for (std::size_t p = 0; p < n; ++p)
+    if (p == 0 || group[p] != group[p - 1]) {
+      ++runs;
+      std::atomic_ref<char>(seen[static_cast<std::size_t>(group[p])]).store(1, std::memory_order_relaxed);
+    }
+  const auto groups = static_cast<std::size_t>(std::count(seen.begin(), seen.end(), 1));
   if (4 * runs <= 5 * groups) return {};
+  std::vector<std::size_t> start(blocks + 1, 0);
+  for (std::size_t p = 0; p < n; ++p) ++start[static_cast<std::size_t>(group[p]) + 1];
   for (std::size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
-  std::vector<std::size_t> order(group.size());
-  for (std::size_t p = 0; p < group.size(); ++p) order[start[static_cast<std::size_t>(group[p])]++] = p;
+  std::vector<std::size_t> order(n);
+  for (std::size_t p = 0; p < n; ++p) order[start[static_cast<std::size_t>(group[p])]++] = p;
   return order;
 }
 
 // Reorders values by a permutation from group_order (new position -> old index), keeping the
 // array's capacity: reserved to its exact size, every array was copied into one of twice that
-// size at the next particle an inlet emitted.
+// size at the next particle an inlet emitted. `threads` share the copies.
 template <class T>
-void apply_order(std::vector<T>& values, const std::vector<std::size_t>& order) {
+void apply_order(std::vector<T>& values, const std::vector<std::size_t>& order, int threads = 1) {
   std::vector<T> out;
   out.reserve(values.capacity());
-  for (std::size_t old : order) out.push_back(values[old]);
+  if (threads == 1) {
+    for (std::size_t old : order) out.push_back(values[old]);
+  } else {
+    out.resize(order.size());
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::size_t i = 0; i < order.size(); ++i) out[i] = values[order[i]];
+  }
   values.swap(out);
 }
 

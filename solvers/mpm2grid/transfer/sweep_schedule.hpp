@@ -13,8 +13,8 @@
 // threads: runs on 2 or 16 threads are bit for bit the same. (One thread sweeps the particles in
 // their order instead, as before threads came: the two orders differ at round-off.)
 #include <algorithm>
+#include <array>
 #include <cstddef>
-#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -54,55 +54,99 @@ inline void cut_evenly(std::size_t particles, SweepParts& parts) {
   }
 }
 
-// P2G's parts by colour: colours[c] the parts of colour c, each a whole number of groups of about
-// kPart particles or more. `keys` is scratch space; `threads` find the particles' groups.
+// P2G's parts by colour for one species, built from the particles' groups (the indices of the
+// blocks holding their stencils' first nodes, as touch_blocks finds them when the grid is built)
+// once per subset of the particles, and kept while the particles and the blocks stay as they were
+// (reset() when the grid is built again). The implicit forces spread each species many times a
+// step (once per residual): the parts are cut once.
 template <int Dim>
-void cut_by_colour(const std::vector<Vec<Dim>>& x, double h, const ParticleSubset& subset, int threads,
-                   std::vector<SweepParts>& colours, std::vector<std::uint64_t>& keys) {
-  using Grid = BlockGrid<Dim>;
-  constexpr int kColours = 1 << Dim;
-  constexpr std::uint64_t kNone = ~std::uint64_t{0};
-  const std::size_t n = x.size();
-  keys.resize(n);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::size_t p = 0; p < n; ++p)
-    keys[p] = subset.has(p) ? Grid::key(Grid::block_holding(stencil_base(x[p], h))) : kNone;
-  // The runs: consecutive particles of one group (those outside the subset between them skipped).
-  struct Run {
-    std::uint64_t key;
-    int colour;
+class ColourSchedule {
+ public:
+  static constexpr int kColours = 1 << Dim;
+
+  // The particles' groups, in the particles' order; filled by the grid's build, which calls reset().
+  std::vector<int>& groups() { return groups_; }
+  void reset() {
+    for (auto& cut : cuts_) cut.built = false;
+  }
+
+  // colours[c]: the parts of colour c, each a whole number of groups of about kPart particles or
+  // more, the groups in the order of their block indices, a group's runs in the particles' order.
+  // `threads` find the runs.
+  const std::vector<SweepParts>& colours(const BlockGrid<Dim>& grid, const ParticleSubset& subset, int threads) {
+    Cut& cut = cuts_[subset.flags ? (subset.value ? 1 : 0) : 2];
+    if (!cut.built) build(grid, subset, threads, cut.colours);
+    cut.built = true;
+    return cut.colours;
+  }
+
+ private:
+  struct GroupRun {
+    int group;
     ParticleRun run;
   };
-  std::vector<Run> runs;
-  std::uint64_t current = kNone;
-  for (std::size_t p = 0; p < n; ++p) {
-    if (keys[p] == kNone) continue;
-    if (keys[p] != current) {
-      current = keys[p];
-      const Index<Dim> g = Grid::unkey(current);
+  struct Cut {
+    bool built = false;
+    std::vector<SweepParts> colours;
+  };
+
+  void build(const BlockGrid<Dim>& grid, const ParticleSubset& subset, int threads, std::vector<SweepParts>& colours) {
+    // The runs: consecutive particles of one group (those outside the subset between them skipped),
+    // found in parts of kPart particles, then joined across the parts' ends.
+    const std::size_t n = groups_.size(), pieces = (n + kPart - 1) / kPart;
+    found_.resize(pieces);
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::size_t k = 0; k < pieces; ++k) {
+      auto& out = found_[k];
+      out.clear();
+      for (std::size_t p = k * kPart; p < std::min(n, (k + 1) * kPart); ++p) {
+        if (!subset.has(p)) continue;
+        if (out.empty() || out.back().group != groups_[p]) out.push_back({groups_[p], {p, p + 1}});
+        out.back().run.end = p + 1;
+      }
+    }
+    runs_.clear();
+    for (const auto& piece : found_)
+      for (const GroupRun& r : piece)
+        if (!runs_.empty() && runs_.back().group == r.group)
+          runs_.back().run.end = r.run.end;
+        else
+          runs_.push_back(r);
+    // The runs by group (a counting sort, keeping each group's runs in order), the groups in the
+    // order of their indices, each to its colour: the parities of its block coordinates. Groups of
+    // one colour touch disjoint blocks (their 2^Dim blocks g + {0, 1}^Dim), so the sums each node
+    // receives do not depend on the groups' order within a colour.
+    first_.assign(grid.blocks() + 1, 0);
+    for (const GroupRun& r : runs_) ++first_[static_cast<std::size_t>(r.group) + 1];
+    for (std::size_t b = 0; b < grid.blocks(); ++b) first_[b + 1] += first_[b];
+    by_group_.resize(runs_.size());
+    for (const GroupRun& r : runs_) by_group_[first_[static_cast<std::size_t>(r.group)]++] = r.run;
+    colours.resize(kColours);
+    for (auto& c : colours) c.clear();
+    std::array<std::size_t, kColours> in_part{};
+    for (std::size_t b = 0, r = 0; b < grid.blocks(); ++b) {
+      if (r == first_[b]) continue;  // no runs in group b
+      const Index<Dim>& g = grid.block_coord(b);
       int colour = 0;
       for (int d = 0; d < Dim; ++d) colour |= (g[d] & 1) << d;
-      runs.push_back({current, colour, {p, p + 1}});
+      SweepParts& parts = colours[static_cast<std::size_t>(colour)];
+      std::size_t& filled = in_part[static_cast<std::size_t>(colour)];
+      for (; r < first_[b]; ++r) {
+        parts.add_run(by_group_[r]);
+        filled += by_group_[r].end - by_group_[r].begin;
+      }
+      if (filled >= kPart) parts.end_part(), filled = 0;
     }
-    runs.back().run.end = p + 1;
+    for (auto& c : colours) c.end_part();
   }
-  // Colour, then group, then the particles' order.
-  std::sort(runs.begin(), runs.end(), [](const Run& a, const Run& b) {
-    if (a.colour != b.colour) return a.colour < b.colour;
-    if (a.key != b.key) return a.key < b.key;
-    return a.run.begin < b.run.begin;
-  });
-  colours.resize(kColours);
-  for (auto& c : colours) c.clear();
-  std::size_t in_part = 0;
-  for (std::size_t r = 0; r < runs.size(); ++r) {
-    SweepParts& parts = colours[static_cast<std::size_t>(runs[r].colour)];
-    parts.add_run(runs[r].run);
-    in_part += runs[r].run.end - runs[r].run.begin;
-    const bool group_ends = r + 1 == runs.size() || runs[r + 1].key != runs[r].key;
-    const bool colour_ends = r + 1 == runs.size() || runs[r + 1].colour != runs[r].colour;
-    if (colour_ends || (group_ends && in_part >= kPart)) parts.end_part(), in_part = 0;
-  }
-}
+
+  std::vector<int> groups_;
+  std::array<Cut, 3> cuts_;  // for the subsets of value 0 and 1, and for all the particles
+  // Scratch: each piece's runs, the joined runs, the runs' start per group and the runs by group.
+  std::vector<std::vector<GroupRun>> found_;
+  std::vector<GroupRun> runs_;
+  std::vector<std::size_t> first_;
+  std::vector<ParticleRun> by_group_;
+};
 
 }  // namespace suite::mpm2grid
