@@ -4,6 +4,7 @@
 // colour schedule covers each particle once, in groups of one colour that touch disjoint blocks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <random>
@@ -94,9 +95,44 @@ TEST(ParticleOrder, ThreadsGiveTheSameOrder) {
   EXPECT_TRUE(group_order(one, 500, 3).empty());
 }
 
+// With the colour ranks, group_order puts the particles colour by colour, each colour's groups in
+// block order, each group's particles in their order: every part of the schedule is then one
+// stretch of particles.
+TEST(ColourSchedule, ColourOrderMakesEachPartOneStretch) {
+  auto P = scattered<2>(30000, 17);
+  BlockGrid<2> grid(0.05);
+  std::vector<int> groups, rank;
+  touch_blocks(P, grid, &groups);
+  colour_ranks(grid, rank);
+  std::vector<int> sorted_rank = rank;
+  std::sort(sorted_rank.begin(), sorted_rank.end());
+  for (std::size_t b = 0; b < rank.size(); ++b) ASSERT_EQ(sorted_rank[b], static_cast<int>(b));  // a permutation
+  const auto order = group_order(groups, grid.blocks(), 2, &rank);
+  ASSERT_FALSE(order.empty());
+  EXPECT_EQ(group_order(groups, grid.blocks(), 1, &rank), order);
+  P.for_each_array([&](auto& values) { apply_order(values, order); });
+  apply_order(groups, order);
+  for (std::size_t p = 1; p < P.size(); ++p) {
+    ASSERT_LE(rank[static_cast<std::size_t>(groups[p - 1])], rank[static_cast<std::size_t>(groups[p])]);
+    if (groups[p - 1] == groups[p]) {
+      ASSERT_LT(P.id[p - 1], P.id[p]);  // a group's particles in their order
+    }
+  }
+  ColourSchedule<2> schedule;
+  schedule.groups() = groups;
+  std::size_t next = 0;
+  for (const SweepParts& parts : schedule.colours(grid, {}, 2))
+    for (std::size_t k = 0; k < parts.size(); ++k)
+      for (const ParticleRun& r : parts[k]) {
+        EXPECT_EQ(r.begin, next) << "a part's runs follow each other";
+        next = r.end;
+      }
+  EXPECT_EQ(next, P.size());
+}
+
 // P2G's schedule: each particle of the subset in exactly one run; a run's particles of one group;
-// a group's runs in one part, in the particles' order; a colour's groups of the colour's
-// parities; the same parts for any number of threads.
+// a group's runs in one part, in the particles' order; the parts of one colour add to disjoint
+// blocks; the same parts for any number of threads.
 template <int Dim>
 void check_schedule(const Particles<Dim>& P, const ParticleSubset& subset) {
   const double h = 0.05;
@@ -111,6 +147,7 @@ void check_schedule(const Particles<Dim>& P, const ParticleSubset& subset) {
   std::map<int, std::pair<std::size_t, std::size_t>> part_of_group;  // group -> (colour, part)
   for (std::size_t c = 0; c < colours.size(); ++c) {
     ASSERT_EQ(colours[c].size(), colours3[c].size());
+    std::map<Index<Dim>, std::size_t> part_of_block;
     for (std::size_t k = 0; k < colours[c].size(); ++k) {
       const auto runs = colours[c][k], runs3 = colours3[c][k];
       ASSERT_EQ(runs.size(), runs3.size());
@@ -120,10 +157,15 @@ void check_schedule(const Particles<Dim>& P, const ParticleSubset& subset) {
         EXPECT_EQ(runs[r].begin, runs3[r].begin);
         EXPECT_EQ(runs[r].end, runs3[r].end);
         const int g = one.groups()[runs[r].begin];
+        // The blocks the group's tile adds to: no other part of the colour adds to them.
         const Index<Dim>& b = grid.block_coord(static_cast<std::size_t>(g));
-        int colour = 0;
-        for (int d = 0; d < Dim; ++d) colour |= (b[d] & 1) << d;
-        EXPECT_EQ(static_cast<std::size_t>(colour), c);
+        for (int corner = 0; corner < (1 << Dim); ++corner) {
+          Index<Dim> touched = b;
+          for (int d = 0; d < Dim; ++d) touched[d] += (corner >> d) & 1;
+          const auto [at, added] = part_of_block.try_emplace(touched, k);
+          EXPECT_TRUE(added || at->second == k)
+              << "colour " << c << ": a block in parts " << at->second << " and " << k;
+        }
         const auto [it, fresh] = part_of_group.try_emplace(g, c, k);
         EXPECT_TRUE(fresh || (it->second == std::pair{c, k} && g == last_group)) << "group " << g << " split";
         if (g == last_group) {
@@ -152,6 +194,13 @@ TEST(ColourSchedule, CoversEachParticleOnceByColour2D) {
 
 TEST(ColourSchedule, CoversEachParticleOnceByColour3D) {
   check_schedule(scattered<3>(30000, 7), {});
+}
+
+// Two clusters 2 km apart (blocks far outside any box the others span).
+TEST(ColourSchedule, CoversEachParticleOnceWithFarApartParticles) {
+  auto P = scattered<2>(20000, 13);
+  for (std::size_t p = 0; p < P.size(); p += 2) P.x[p][0] += 2000.0;
+  check_schedule(P, {});
 }
 
 // The schedule's sweep, colour by colour, adds the same node sums as one sweep in the particles'

@@ -106,18 +106,22 @@ void Simulation<Dim>::build_grid() {
   grid_.clear();
   // Each species' particles are put back in group order where they drifted from it (the
   // transfers' speed; transfer/particle_order.hpp), the soil's known stresses with them.
-  // The groups stay with their particles: P2G's schedules are cut from them.
+  // The groups stay with their particles: P2G's schedules are cut from them. With threads, the
+  // groups go colour by colour, as P2G's schedule sweeps them (transfer/sweep_schedule.hpp).
   water_schedule_.reset(), soil_schedule_.reset();
   std::vector<int>& water_groups = water_schedule_.groups();
   const int threads = s_.threads;
+  const std::vector<int>* rank = threads > 1 ? &colour_rank_ : nullptr;
   touch(water_, water_groups);
-  if (const auto order = group_order(water_groups, grid_.blocks(), threads); !order.empty()) {
+  if (rank) colour_ranks(grid_, colour_rank_);
+  if (const auto order = group_order(water_groups, grid_.blocks(), threads, rank); !order.empty()) {
     water_.for_each_array([&](auto& values) { apply_order(values, order, threads); });
     apply_order(water_groups, order, threads);
   }
   std::vector<int>& soil_groups = soil_schedule_.groups();
   touch(soil_, soil_groups);
-  if (const auto order = group_order(soil_groups, grid_.blocks(), threads); !order.empty()) {
+  if (rank) colour_ranks(grid_, colour_rank_);
+  if (const auto order = group_order(soil_groups, grid_.blocks(), threads, rank); !order.empty()) {
     soil_.for_each_array([&](auto& values) { apply_order(values, order, threads); });
     apply_order(soil_groups, order, threads);
     if (known_stress_.size() == soil_.size()) apply_order(known_stress_, order, threads);

@@ -298,6 +298,7 @@ class Simulation {
   // With threads: the parts of a G2P or particle update, each species' P2G parts by colour.
   SweepParts parts_;
   ColourSchedule<Dim> water_schedule_, soil_schedule_;
+  std::vector<int> colour_rank_;                  // the blocks' places in colour order (colour_ranks)
   std::vector<std::vector<Index<Dim>>> reached_;  // touch(): the blocks each part's stencils reach
   double time_ = 0;
   long long steps_ = 0;

@@ -19,8 +19,10 @@ namespace suite::mpm2grid {
 // consecutive, groups in the order of their block indices and the particles of a group in their
 // present order (a counting sort); or an empty one when the particles already come in at most a
 // quarter more runs than there are groups (then reordering costs more than it saves). `threads`
-// count the runs and groups.
-inline std::vector<std::size_t> group_order(const std::vector<int>& group, std::size_t blocks, int threads = 1) {
+// count the runs and groups. With `rank`, the groups go in the order of rank[group] instead of
+// their indices (a permutation of 0 .. blocks - 1: sweep_schedule.hpp's colour order).
+inline std::vector<std::size_t> group_order(const std::vector<int>& group, std::size_t blocks, int threads = 1,
+                                            const std::vector<int>* rank = nullptr) {
   // A group's first particle starts a run: marking the groups of the runs' first particles finds
   // every group.
   std::vector<char> seen(blocks, 0);
@@ -34,11 +36,14 @@ inline std::vector<std::size_t> group_order(const std::vector<int>& group, std::
     }
   const auto groups = static_cast<std::size_t>(std::count(seen.begin(), seen.end(), 1));
   if (4 * runs <= 5 * groups) return {};
+  const auto place = [&](std::size_t p) {
+    return static_cast<std::size_t>(rank ? (*rank)[static_cast<std::size_t>(group[p])] : group[p]);
+  };
   std::vector<std::size_t> start(blocks + 1, 0);
-  for (std::size_t p = 0; p < n; ++p) ++start[static_cast<std::size_t>(group[p]) + 1];
+  for (std::size_t p = 0; p < n; ++p) ++start[place(p) + 1];
   for (std::size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
   std::vector<std::size_t> order(n);
-  for (std::size_t p = 0; p < n; ++p) order[start[static_cast<std::size_t>(group[p])]++] = p;
+  for (std::size_t p = 0; p < n; ++p) order[start[place(p)]++] = p;
   return order;
 }
 
