@@ -8,11 +8,13 @@
 # run_node_scaling.sh's (HYBRID).
 #   benchmarks/mpm2grid/run_threads.sh [MPM2GRID]      (about 6 min on 2 idle cores)
 #   env: H (0.05 m), STEPS (300), REPEATS (5), CONFIGS ("1x1 1x2 2x1"), BASELINE (none), NAME
-#        (threads), and common.sh's MPIEXEC OUT NICE KEEP_RUNS
+#        (threads), MPM_ARGS (more key=value overrides, e.g. free_water_field=true), and
+#        common.sh's MPIEXEC OUT NICE KEEP_RUNS
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 h=${H:-0.05 m} steps=${STEPS:-300} repeats=${REPEATS:-5} configs=${CONFIGS:-1x1 1x2 2x1} name=${NAME:-threads}
 baseline=${BASELINE:-}
+read -r -a extra <<< "${MPM_ARGS:-}"
 [ -z "$baseline" ] || [ -x "$baseline" ] || { echo "BASELINE=$baseline is not an executable" >&2; exit 2; }
 for c in $configs; do
   [[ $c =~ ^[1-9][0-9]*x[1-9][0-9]*$ ]] || { echo "CONFIGS: '$c' is not RANKSxTHREADS, e.g. 1x2" >&2; exit 2; }
@@ -31,7 +33,7 @@ for ((r = 1; r <= repeats; r++)); do
       ranks=${c%x*} threads=${c#*x}
       run=$work/$build-$c-$r
       rc=$(OMP_NUM_THREADS=$threads run_one "$run" "$ranks" "$scenes/table_3_4_example2.yaml" "grid.spacing=$h" \
-        "time.max_steps=$steps" "time.output=1000 s")
+        "time.max_steps=$steps" "time.output=1000 s" ${extra[@]+"${extra[@]}"})
       [ "$rc" = 0 ] || { echo "run $run failed ($rc): $(tail -1 "$run.err")" >&2; exit 1; }
       echo "$build,$c,$ranks,$threads,$r,$("${metrics[@]}" "$run" "$run.rss")" >> "$csv"
       echo "$build $c repeat $r: step $(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["phases"]["step"]["max_s"])' "$run/run.json") s"
@@ -40,7 +42,7 @@ for ((r = 1; r <= repeats; r++)); do
 done
 bin=$current
 {
-  echo "## Threads inside a rank: example 2 at h = $h, $steps steps (run_threads.sh)"
+  echo "## Threads inside a rank: example 2 at h = $h, $steps steps${MPM_ARGS:+, $MPM_ARGS} (run_threads.sh)"
   echo
   provenance "$run/run.json"
   [ -n "$baseline" ] && echo "Baseline: $baseline (git $(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1])).get("git_hash"))' "$work/baseline-${configs%% *}-1/run.json"))."

@@ -27,6 +27,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "solvers/mpm2grid/boundary/wall_fold.hpp"
@@ -57,7 +58,7 @@ inline constexpr double kLeastFill = 0.1;
 // caller), folded by `walls`.
 template <int Dim>
 void spread_soil_shape(const Particles<Dim>& soil, const BlockGrid<Dim>& grid, const WallFold<Dim>& walls,
-                       NodeFields<Dim>& shape) {
+                       NodeFields<Dim>& shape, std::span<const ParticleRun> runs = {}) {
   using Tile = NodeTile<Dim, 1 + Dim>;
   auto tile = std::make_unique<Tile>();
   constexpr auto fields = scalar_and_vector_fields<Dim>();  // the mass and the offsets
@@ -76,18 +77,19 @@ void spread_soil_shape(const Particles<Dim>& soil, const BlockGrid<Dim>& grid, c
       soil.x, grid, *tile, [&] { tile->zero(); }, leave,
       [&](std::size_t p, const StencilRows<Dim>& s, int first) {
         scatter_apic<StressForm::none, true>(*tile, s, first, soil.mass[p], zero, offsets, no_stress, zero, 0.0);
-      });
+      },
+      {}, runs);
 }
 
-// Per water particle, 1 where it is free water: the soil's fill (per slot, complete on the
-// nodes the particles reach) sampled at it below kFreeWaterFill.
+// Per water particle of `run`, 1 where it is free water: the soil's fill (per slot, complete on
+// the nodes the particles reach) sampled at it below kFreeWaterFill. `free` has a place for each
+// water particle.
 template <int Dim>
 void sort_free_water(const Particles<Dim>& water, const BlockGrid<Dim>& grid, const std::vector<double>& fill,
-                     const WallFold<Dim>& walls, std::vector<char>& free) {
+                     const WallFold<Dim>& walls, std::vector<char>& free, ParticleRun run) {
   using Tile = NodeTile<Dim, 1>;
   auto tile = std::make_unique<Tile>();
   constexpr std::array<TileField, 1> read{TileField{TileField::scalar}};
-  free.resize(water.size());
   sweep_groups(
       water.x, grid, *tile,
       [&] {
@@ -97,7 +99,8 @@ void sort_free_water(const Particles<Dim>& water, const BlockGrid<Dim>& grid, co
       [] {},
       [&](std::size_t p, const StencilRows<Dim>& s, int first) {
         free[p] = sample_field<false, kNoAxes>(*tile, 0, s, first).value < kFreeWaterFill;
-      });
+      },
+      {}, std::span<const ParticleRun>(&run, 1));
 }
 
 // The contact of the free water with the mixture on every node (above) where the two touch: the
@@ -105,8 +108,10 @@ void sort_free_water(const Particles<Dim>& water, const BlockGrid<Dim>& grid, co
 // at least kLeastFill.
 template <int Dim>
 void free_water_contact(const NodeFields<Dim>& shape, const std::vector<double>& soil_fill, double free_per_kg,
-                        NodeFields<Dim>& soil, NodeFields<Dim>& pore, NodeFields<Dim>& free) {
-  for (std::size_t i = 0; i < free.mass.size(); ++i) {
+                        NodeFields<Dim>& soil, NodeFields<Dim>& pore, NodeFields<Dim>& free, int threads = 1) {
+  const std::size_t nodes = free.mass.size();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::size_t i = 0; i < nodes; ++i) {
     const double mf = free.mass[i], ms = soil.mass[i], mp = pore.mass[i], M = ms + mp;
     const double fill_s = soil_fill[i], fill_f = free_per_kg * mf;
     if (!(mf > 0) || !(M > 0) || fill_s + fill_f < kTouching || fill_s < kLeastFill) continue;

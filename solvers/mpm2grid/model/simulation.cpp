@@ -143,21 +143,31 @@ void Simulation<Dim>::sort_water() {
   {
     auto timed = phase(StepPhase::p2g_soil);
     shape_nodes_.reset(grid_.nodes(), s_.threads);
-    spread_soil_shape(soil_, grid_, shape_fold_, shape_nodes_);
+    if (s_.threads == 1)
+      spread_soil_shape(soil_, grid_, shape_fold_, shape_nodes_);
+    else  // by colours, as the soil's P2G
+      for (const SweepParts& parts : soil_schedule_.colours(grid_, {}, s_.threads))
+        in_parts(parts, [&](std::size_t, std::span<const ParticleRun> runs) {
+          spread_soil_shape(soil_, grid_, shape_fold_, shape_nodes_, runs);
+        });
   }
   if (dd_) {
     auto timed = phase(StepPhase::halo_sum);
     dd_->sum_to_owners(shape_nodes_);
   }
   const double per_kg = 1 / (s_.soil.density * std::pow(grid_.spacing(), Dim));
-  soil_fill_.resize(grid_.nodes());
-  for (std::size_t i = 0; i < grid_.nodes(); ++i) soil_fill_[i] = per_kg * shape_nodes_.mass[i];
+  const std::size_t nodes = grid_.nodes();
+  soil_fill_.resize(nodes);
+#pragma omp parallel for schedule(static) num_threads(s_.threads) if (s_.threads > 1)
+  for (std::size_t i = 0; i < nodes; ++i) soil_fill_[i] = per_kg * shape_nodes_.mass[i];
   if (dd_) {
     auto timed = phase(StepPhase::halo_copy);
     dd_->copy_to_ghosts(soil_fill_);
   }
   auto timed = phase(StepPhase::p2g_water);
-  sort_free_water(water_, grid_, soil_fill_, shape_fold_, free_water_);
+  free_water_.resize(water_.size());
+  for_parts(water_.size(),
+            [&](ParticleRun run) { sort_free_water(water_, grid_, soil_fill_, shape_fold_, free_water_, run); });
 }
 
 // The transfers and touch_blocks are compiled for the baseline and for AVX2
@@ -244,6 +254,14 @@ template <class F>
 void Simulation<Dim>::in_parts(const SweepParts& parts, F&& f) {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(s_.threads)
   for (std::size_t k = 0; k < parts.size(); ++k) f(k, parts[k]);
+}
+
+template <int Dim>
+template <class F>
+void Simulation<Dim>::for_parts(std::size_t particles, F&& f) {
+  if (s_.threads == 1) return f(ParticleRun{0, particles});
+  cut_evenly(particles, parts_);
+  in_parts(parts_, [&](std::size_t, std::span<const ParticleRun> runs) { f(runs[0]); });
 }
 
 // P2G of both species. The water goes first: its node pressures p_i = sum_p w_ip m_p p_p / m_i
@@ -424,10 +442,12 @@ template <int Dim>
 void Simulation<Dim>::free_water_velocities(double dt) {
   if (!s_.free_water_field) return;
   auto& f = free_nodes_;
-  for (std::size_t i = 0; i < grid_.nodes(); ++i)
+  const std::size_t nodes = grid_.nodes();
+#pragma omp parallel for schedule(static) num_threads(s_.threads) if (s_.threads > 1)
+  for (std::size_t i = 0; i < nodes; ++i)
     f.velocity[i] = f.mass[i] > 0 ? Vec<Dim>((f.momentum[i] + dt * f.force[i]) / f.mass[i]) : Vec<Dim>::Zero();
   const double free_per_kg = 1 / (s_.water.density * std::pow(grid_.spacing(), Dim));
-  free_water_contact(shape_nodes_, soil_fill_, free_per_kg, soil_nodes_, water_nodes_, free_nodes_);
+  free_water_contact(shape_nodes_, soil_fill_, free_per_kg, soil_nodes_, water_nodes_, free_nodes_, s_.threads);
 }
 
 // The soil particles' loads on the soil grid, scaled by the ramp at the step's start.
@@ -671,15 +691,26 @@ void Simulation<Dim>::carry_suspended() {
 // another one. Passes of their own: inside the soil's update loop, with the return mapping
 // inlined there, they slowed the 2-rank step (docs/mpm2grid.md, "Benchmarks"); and in the vector
 // clones std::floor is one instruction.
+// With threads, each pass in parts of kPart particles.
 template <int Dim>
-SUITE_VECTOR_CLONES void Simulation<Dim>::record_homes(const Particles<Dim>& P) {
+void Simulation<Dim>::record_homes(const Particles<Dim>& P) {
   home_before_.resize(P.size());
-  for (std::size_t p = 0; p < P.size(); ++p) home_before_[p] = BlockGrid<Dim>::key(grid_.home_block(P.x[p]));
+  for_parts(P.size(), [&](ParticleRun run) { record_homes(P, run); });
 }
 template <int Dim>
-SUITE_VECTOR_CLONES void Simulation<Dim>::mark_moved(const Particles<Dim>& P, std::vector<char>& left) const {
+void Simulation<Dim>::mark_moved(const Particles<Dim>& P, std::vector<char>& left) {
   left.resize(P.size());
-  for (std::size_t p = 0; p < P.size(); ++p) left[p] = BlockGrid<Dim>::key(grid_.home_block(P.x[p])) != home_before_[p];
+  for_parts(P.size(), [&](ParticleRun run) { mark_moved(P, left, run); });
+}
+template <int Dim>
+SUITE_VECTOR_CLONES void Simulation<Dim>::record_homes(const Particles<Dim>& P, ParticleRun run) {
+  for (std::size_t p = run.begin; p < run.end; ++p) home_before_[p] = BlockGrid<Dim>::key(grid_.home_block(P.x[p]));
+}
+template <int Dim>
+SUITE_VECTOR_CLONES void Simulation<Dim>::mark_moved(const Particles<Dim>& P, std::vector<char>& left,
+                                                     ParticleRun run) const {
+  for (std::size_t p = run.begin; p < run.end; ++p)
+    left[p] = BlockGrid<Dim>::key(grid_.home_block(P.x[p])) != home_before_[p];
 }
 
 // The particle updates after G2P. The soil's, with the return mapping, is compiled for the
@@ -717,14 +748,8 @@ void Simulation<Dim>::update_particles(double dt) {
   soil_velocities();  // leaves the sums sum_i w_ip m_w,i / I_i in `saturation`
   known_stress_.resize(soil_.size());
   if (dd_) record_homes(soil_);
-  if (s_.threads == 1) {
-    update_soil(dt, {0, soil_.size()});
-  } else {
-    cut_evenly(soil_.size(), parts_);  // parts of kPart particles: whole batches of the return mapping
-    in_parts(parts_, [&](std::size_t, std::span<const ParticleRun> runs) {
-      for (const ParticleRun& run : runs) update_soil(dt, run);
-    });
-  }
+  // (With threads, parts of kPart particles: whole batches of the return mapping.)
+  for_parts(soil_.size(), [&](ParticleRun run) { update_soil(dt, run); });
   if (dd_) mark_moved(soil_, left_home_[1]);
 }
 

@@ -215,6 +215,10 @@ class Simulation {
   // f(k, runs) for each part k, parts taken by the threads as they come free.
   template <class F>
   void in_parts(const SweepParts& parts, F&& f);
+  // f(run) for runs that together cover particles 0 .. particles - 1: one run on one thread, parts
+  // of kPart particles with threads.
+  template <class F>
+  void for_parts(std::size_t particles, F&& f);
   void update_particles(double dt);
   void update_soil(double dt, ParticleRun run);
   void remove_outflow();
@@ -242,7 +246,9 @@ class Simulation {
   void free_water_velocities(double dt);
   void sample(const NodeFields<Dim>& nodes, const WallFold<Dim>& walls);
   void record_homes(const Particles<Dim>& P);
-  void mark_moved(const Particles<Dim>& P, std::vector<char>& left) const;
+  void record_homes(const Particles<Dim>& P, ParticleRun run);
+  void mark_moved(const Particles<Dim>& P, std::vector<char>& left);
+  void mark_moved(const Particles<Dim>& P, std::vector<char>& left, ParticleRun run) const;
   // Times the rest of the enclosing scope as `phase` (waits counted over several ranks).
   StepPhaseScope phase(StepPhase p) { return {times_, p, wait_clock()}; }
   const WaitClock* wait_clock() const { return dd_ ? &dd_->waited() : nullptr; }
