@@ -41,11 +41,12 @@ for ((r = 1; r <= repeats; r++)); do
   done
 done
 bin=$current
+first=${configs%% *}
 {
   echo "## Threads inside a rank: example 2 at h = $h, $steps steps${MPM_ARGS:+, $MPM_ARGS} (run_threads.sh)"
   echo
-  provenance "$run/run.json"
-  [ -n "$baseline" ] && echo "Baseline: $baseline (git $(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1])).get("git_hash"))' "$work/baseline-${configs%% *}-1/run.json"))."
+  provenance "$work/current-$first-1/run.json"
+  [ -n "$baseline" ] && echo "Baseline: $baseline (git $(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1])).get("git_hash"))' "$work/baseline-$first-1/run.json"))."
   echo
   $plot "$here/threads.py" "$csv"
 } | tee "$out/$name.md"

@@ -92,11 +92,12 @@ class ColourSchedule {
 
   // colours[c]: the parts of colour c, each a whole number of groups of about kPart particles or
   // more, the groups in the order of their block indices, a group's runs in the particles' order.
-  // `threads` find the runs.
+  // `threads` find the runs. A subset's parts are kept for its flags and value (the flags' values
+  // must not change until reset()).
   const std::vector<SweepParts>& colours(const BlockGrid<Dim>& grid, const ParticleSubset& subset, int threads) {
     Cut& cut = cuts_[subset.flags ? (subset.value ? 1 : 0) : 2];
-    if (!cut.built) build(grid, subset, threads, cut.colours);
-    cut.built = true;
+    if (!cut.built || cut.flags != subset.flags) build(grid, subset, threads, cut.colours);
+    cut.built = true, cut.flags = subset.flags;
     return cut.colours;
   }
 
@@ -107,6 +108,7 @@ class ColourSchedule {
   };
   struct Cut {
     bool built = false;
+    const std::vector<char>* flags = nullptr;
     std::vector<SweepParts> colours;
   };
 
