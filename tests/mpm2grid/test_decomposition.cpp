@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <set>
+#include <stdexcept>
 
 #include "solvers/mpm2grid/decomposition/partition.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
@@ -97,7 +98,7 @@ TEST(Particles, IdsFollowTheirParticles) {
   EXPECT_EQ(P.id, (std::vector<std::int64_t>{0, 1, 2, 3, 4, 5}));
   const std::vector<std::size_t> order{5, 3, 1, 0, 2, 4};
   P.for_each_array([&](auto& values) { apply_order(values, order); });
-  P.retain([&](std::size_t p) { return P.id[p] != 3; });
+  P.remove({static_cast<std::size_t>(std::find(P.id.begin(), P.id.end(), 3) - P.id.begin())});
   ASSERT_EQ(P.size(), 5u);
   for (std::size_t p = 0; p < P.size(); ++p) {
     EXPECT_EQ(P.x[p][0], static_cast<double>(P.id[p]));
@@ -105,6 +106,28 @@ TEST(Particles, IdsFollowTheirParticles) {
   }
   P.add(Vec<2>(9, 9), Vec<2>::Zero(), 1.0, 1.0);
   EXPECT_EQ(P.id.back(), 6);
+}
+
+// Removing particles fills each place with the last particle that stays: the others keep their
+// places, ids and states; the caller's arrays follow.
+TEST(Particles, RemoveFillsPlacesFromTheEnd) {
+  Particles<2> P;
+  for (int i = 0; i < 7; ++i) P.add(Vec<2>(i, 0), Vec<2>(0, i), 1.0 + i, 1.0);
+  std::vector<int> along{10, 11, 12, 13, 14, 15, 16};
+  P.remove({1, 4, 5}, along);
+  EXPECT_EQ(P.id, (std::vector<std::int64_t>{0, 6, 2, 3}));
+  EXPECT_EQ(along, (std::vector<int>{10, 16, 12, 13}));
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    EXPECT_EQ(P.x[p][0], static_cast<double>(P.id[p]));
+    EXPECT_EQ(P.mass[p], 1.0 + static_cast<double>(P.id[p]));
+  }
+  P.remove({}, along);
+  EXPECT_EQ(P.size(), 4u);
+  P.remove({0, 1, 2, 3}, along);
+  EXPECT_EQ(P.size(), 0u);
+  EXPECT_TRUE(along.empty());
+  std::vector<int> short_list{1};
+  EXPECT_THROW(P.remove({}, short_list), std::logic_error);
 }
 
 // Group order: each group's particles consecutive, in their own order within a group, groups in

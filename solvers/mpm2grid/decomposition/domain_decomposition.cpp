@@ -162,8 +162,9 @@ void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& so
       if (k == 0) to[0] += 1;
     }
     stats_.migrated += static_cast<long long>(leaving_[k].size());
-    if (leaving_[k].empty()) continue;
-    species[k]->retain(staying(k));
+    sent_[k].clear();
+    for (const auto& l : leaving_[k]) sent_[k].push_back(l.p);
+    species[k]->remove(sent_[k]);
   }
   for (std::size_t r = 0; r < ranks; ++r)
     if (static_cast<int>(r) != me && !send[r].empty()) {

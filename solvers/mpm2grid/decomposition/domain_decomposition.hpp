@@ -95,11 +95,7 @@ class DomainDecomposition {
   // the caller sizes it for the ones received.
   template <class T>
   void drop_sent(std::size_t k, std::vector<T>& values) const {
-    std::size_t n = 0;
-    auto stays = staying(k);
-    for (std::size_t p = 0; p < values.size(); ++p)
-      if (stays(p)) values[n++] = values[p];
-    values.resize(n);
+    remove_at(sent_[k], values);
   }
   // COLLECTIVE. Partitions when forced (the first distribution) or when the measurement due at
   // this step finds the load above the threshold; then migrates. True when it partitioned.
@@ -126,14 +122,9 @@ class DomainDecomposition {
     int to;         // its new owner
   };
   std::array<std::vector<Leaving>, 2> leaving_;  // migrate()'s lists (water, soil), kept for their capacity
+  std::array<std::vector<std::size_t>, 2> sent_;  // the indices the last migrate() sent away, ascending
   // keep(p) for a compaction in particle order: false for the particles on species k's leaving
   // list (called once per index, ascending).
-  auto staying(std::size_t k) const {
-    return [&leaving = leaving_[k], next = std::size_t{0}](std::size_t p) mutable {
-      if (next < leaving.size() && leaving[next].p == p) return ++next, false;
-      return true;
-    };
-  }
 };
 
 extern template class DomainDecomposition<2>;

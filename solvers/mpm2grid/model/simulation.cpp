@@ -804,32 +804,33 @@ template <int Dim>
 void Simulation<Dim>::remove_outflow() {
   if (!s_.walls.any_open()) return;  // a closed box (the same on every rank): nothing leaves
   Outflow<Dim> step;                 // this step's, on this rank
-  // Which particles left, looked at over the threads; most steps none has, and the particles stay
-  // as they are. Where some have, they are taken out in order.
-  const auto any_left = [&](const Particles<Dim>& P) {
-    const std::size_t n = P.size();
-    left_.resize(n);
-    std::size_t left = 0;
-#pragma omp parallel for schedule(static) reduction(+ : left) num_threads(s_.threads) if (s_.threads > 1)
-    for (std::size_t p = 0; p < n; ++p) left += left_[p] = s_.walls.left_through_open_side(P.x[p]);
-    return left > 0;
+  // Which particles left, found over the threads in parts of kPart particles; recorded in their
+  // order and taken out (Particles::remove). The per-particle lists of this step go with them.
+  const auto take_out = [&](Particles<Dim>& P, double& species_mass, auto&... along) {
+    const std::size_t n = P.size(), pieces = (n + kPart - 1) / kPart;
+    left_in_part_.resize(pieces);
+#pragma omp parallel for schedule(static) num_threads(s_.threads) if (s_.threads > 1)
+    for (std::size_t k = 0; k < pieces; ++k) {
+      left_in_part_[k].clear();
+      for (std::size_t p = k * kPart; p < std::min(n, (k + 1) * kPart); ++p)
+        if (s_.walls.left_through_open_side(P.x[p])) left_in_part_[k].push_back(p);
+    }
+    left_.clear();
+    for (const auto& part : left_in_part_) left_.insert(left_.end(), part.begin(), part.end());
+    if (left_.empty()) return;
+    for (const std::size_t p : left_) {
+      species_mass += P.mass[p];
+      step.momentum += P.mass[p] * P.v[p];
+      if (&P == &soil_ && s_.erosion.on) step.shear_eroded_volume += bed_shear_->eroded_volume(soil_, p);
+    }
+    P.remove(left_, along...);
   };
-  auto keep = [&](const Particles<Dim>& species, double& species_mass) {
-    return [this, &step, P = &species, mass = &species_mass](std::size_t p) {
-      if (!left_[p]) return true;
-      *mass += P->mass[p];
-      step.momentum += P->mass[p] * P->v[p];
-      if (P == &soil_ && s_.erosion.on) step.shear_eroded_volume += bed_shear_->eroded_volume(soil_, p);
-      return false;
-    };
-  };
-  // The per-particle lists of this step go with their particles.
   if (dd_) {
-    if (any_left(water_)) water_.retain(keep(water_, step.water_mass), left_home_[0]);
-    if (any_left(soil_)) soil_.retain(keep(soil_, step.soil_mass), left_home_[1], known_stress_);
+    take_out(water_, step.water_mass, left_home_[0]);
+    take_out(soil_, step.soil_mass, left_home_[1], known_stress_);
   } else {
-    if (any_left(water_)) water_.retain(keep(water_, step.water_mass));
-    if (any_left(soil_)) soil_.retain(keep(soil_, step.soil_mass), known_stress_);
+    take_out(water_, step.water_mass);
+    take_out(soil_, step.soil_mass, known_stress_);
   }
   if (dd_) {  // the record is the same on every rank
     std::array<double, 3 + Dim> all{};

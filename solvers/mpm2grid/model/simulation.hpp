@@ -290,7 +290,9 @@ class Simulation {
   // Over several ranks, per water and soil particle: 1 where the step's move took it to another
   // home block (only these can have left this rank's blocks; migrate() looks up just them).
   std::array<std::vector<char>, 2> left_home_;
-  std::vector<char> left_;  // remove_outflow(): 1 per particle of a species that left the domain
+  // remove_outflow(): the particles of a species that left the domain, per part and in all.
+  std::vector<std::vector<std::size_t>> left_in_part_;
+  std::vector<std::size_t> left_;
   std::vector<typename BlockGrid<Dim>::Key> home_before_;  // one species' home blocks before the move
   std::optional<mpi::Comm> comm_;
   std::unique_ptr<ConsistentDrag<Dim>> consistent_;

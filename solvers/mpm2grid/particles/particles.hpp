@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "solvers/mpm2grid/kernels/bspline.hpp"
@@ -26,6 +27,22 @@ struct ParticleSubset {
 struct ParticleRun {
   std::size_t begin = 0, end = 0;
 };
+
+// Takes out values[indices] (ascending, each below the size), each place filled by the last value
+// that stays: values .. a b c with b and c taken out become .. a, and a taken out from a b c d
+// leaves d b c.
+template <class T>
+void remove_at(const std::vector<std::size_t>& indices, std::vector<T>& values) {
+  if (!indices.empty() && indices.back() >= values.size())
+    throw std::logic_error("remove_at: an index past the end of the values");
+  std::size_t end = values.size(), back = indices.size();
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    while (back > i && indices[back - 1] + 1 == end) --end, --back;  // the last values go
+    if (indices[i] >= end) break;
+    values[indices[i]] = values[--end];
+  }
+  values.resize(end);
+}
 
 template <int Dim>
 struct Particles {
@@ -76,21 +93,18 @@ struct Particles {
     id.push_back(next_id++);
   }
 
-  // Keeps the particles for which keep(p) is true, in order; the caller's own per-particle arrays
-  // (`along`) are compacted with them.
-  template <class Keep, class... Along>
-  void retain(Keep&& keep, std::vector<Along>&... along) {
-    std::size_t n = 0;
-    for (std::size_t p = 0; p < size(); ++p) {
-      if (!keep(p)) continue;
-      if (n != p) {
-        for_each_array([n, p](auto& values) { values[n] = values[p]; });
-        ((along[n] = along[p]), ...);
-      }
-      ++n;
-    }
-    for_each_array([n](auto& values) { values.resize(n); });
-    (along.resize(n), ...);
+  // Takes out the particles at `indices` (ascending), each place filled by the last particle that
+  // stays (remove_at), and the same entries of the caller's arrays `along` (each as long as the
+  // particles). A handful of particles a step leave through an outlet or to another rank, anywhere
+  // in the arrays: filling their places moves as many, where closing the gaps in order moved
+  // every particle behind the first one. The particles' order changes there (group_order
+  // mends it when it pays).
+  template <class... Along>
+  void remove(const std::vector<std::size_t>& indices, std::vector<Along>&... along) {
+    if (((along.size() != size()) || ...))
+      throw std::logic_error("Particles::remove: the caller's arrays need an entry for every particle");
+    for_each_array([&](auto& values) { remove_at(indices, values); });
+    (remove_at(indices, along), ...);
   }
 
   // A particle's whole state as kPacked doubles (for moving it to another rank), and back (the id
