@@ -123,8 +123,6 @@ class DomainDecomposition {
   };
   std::array<std::vector<Leaving>, 2> leaving_;  // migrate()'s lists (water, soil), kept for their capacity
   std::array<std::vector<std::size_t>, 2> sent_;  // the indices the last migrate() sent away, ascending
-  // keep(p) for a compaction in particle order: false for the particles on species k's leaving
-  // list (called once per index, ascending).
 };
 
 extern template class DomainDecomposition<2>;

@@ -1,9 +1,10 @@
 #pragma once
 // Group order of the particles (grid/node_tile.hpp): the transfers fill or read one tile per run
 // of consecutive particles of one group, so they are fastest when each group's particles are
-// consecutive in memory. Particles drift out of that order as they cross block boundaries, and
-// the ones a rank receives or an inlet emits come last; group_order() tells when, and how, to put
-// them back. A particle keeps its id (Particles::id) when it moves.
+// consecutive in memory. Particles drift out of that order as they cross block boundaries, the
+// ones a rank receives or an inlet emits come last, and the last ones fill the places of those
+// that leave (Particles::remove); group_order() tells when, and how, to put them back. A particle
+// keeps its id (Particles::id) when it moves.
 // The order only changes the order of the sums onto the nodes (round-off). It is a function of
 // the particles alone (their order and positions), so that a run restarted from a checkpoint,
 // which keeps the particles in their order, reorders on the same steps as the uninterrupted run.
