@@ -40,6 +40,21 @@ class BlockGrid {
     lookup_.clear();
   }
 
+  // The dense box of a scene whose walls span lo .. hi: their blocks and two more on each side (the
+  // blocks any stencil of a particle inside reaches, one block past the walls, and the halo's).
+  // walls_box_blocks: its blocks, in floating point (walls far apart must not overflow an int).
+  static double walls_box_blocks(const Vec<Dim>& lo, const Vec<Dim>& hi, double h) {
+    double blocks = 1;
+    for (int d = 0; d < Dim; ++d) blocks *= (hi[d] - lo[d]) / (kSide * h) + 6;
+    return blocks;
+  }
+  bool set_walls_box(const Vec<Dim>& lo, const Vec<Dim>& hi) {
+    if (!(walls_box_blocks(lo, hi, h_) <= static_cast<double>(kDenseBlocks))) return false;
+    Index<Dim> first = home_block(lo), last = home_block(hi);
+    for (int d = 0; d < Dim; ++d) first[d] -= 2, last[d] += 2;
+    return set_dense_box(first, last);
+  }
+
   // A box of blocks, lo .. hi per axis, where the blocks' indices are looked up in an array, not
   // in the hash table (which holds the blocks outside it): the blocks a scene's walls enclose.
   // Refused (the hash table alone, as without a box) where the box has more than kDenseBlocks

@@ -31,15 +31,7 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
       shape_fold_(settings.walls.all_slip(), grid_.spacing(), false),
       comm_(std::move(comm)) {
   if (s_.threads < 1) throw std::invalid_argument("threads per rank: give 1 or more");
-  // The blocks' indices in an array over the walls' box: the blocks any stencil of a particle
-  // inside reaches (one block past the walls) and the halo's, within two blocks of the walls.
-  double box_blocks = 1;  // (in floating point: walls far apart must not overflow an int)
-  for (int d = 0; d < Dim; ++d) box_blocks *= (s_.walls.hi[d] - s_.walls.lo[d]) / (BlockGrid<Dim>::kSide * s_.h) + 6;
-  if (box_blocks <= static_cast<double>(BlockGrid<Dim>::kDenseBlocks)) {
-    Index<Dim> lo = BlockGrid<Dim>::home_block(s_.walls.lo, s_.h), hi = BlockGrid<Dim>::home_block(s_.walls.hi, s_.h);
-    for (int d = 0; d < Dim; ++d) lo[d] -= 2, hi[d] += 2;
-    grid_.set_dense_box(lo, hi);
-  }
+  grid_.set_walls_box(s_.walls.lo, s_.walls.hi);  // the blocks' indices in an array over the walls' box
   if (s_.inlet) inlet_.emplace(*s_.inlet);
   if (comm_ && comm_->size() > 1) dd_.emplace(*comm_, s_.decomposition, grid_);
   if (s_.erosion.on && !s_.bed_shear.on())

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
 
 namespace suite::mpm2grid {
@@ -112,6 +113,10 @@ MemoryEstimate estimate_memory(const Scene<Dim>& sc) {
                e.nodes * (kNodeBytes<Dim> / 2 + 40.0 * Dim * sizeof(double));
   }
   e.bytes_per_rank = kRankBytes;
+  // Each rank's index of the blocks over the walls' box (BlockGrid::set_walls_box).
+  if (const double blocks = BlockGrid<Dim>::walls_box_blocks(s.walls.lo, s.walls.hi, s.h);
+      blocks <= static_cast<double>(BlockGrid<Dim>::kDenseBlocks))
+    e.bytes_per_rank += blocks * sizeof(int);
   return e;
 }
 
