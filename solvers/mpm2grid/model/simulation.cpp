@@ -100,24 +100,24 @@ void Simulation<Dim>::build_grid() {
   // transfers' speed; transfer/particle_order.hpp), the soil's known stresses with them.
   // The groups stay with their particles: P2G's schedules are cut from them. With threads, the
   // groups go colour by colour, as P2G's schedule sweeps them (transfer/sweep_schedule.hpp).
+  // (Both species touch first: the colour ranks then cover every block. Reordering the water
+  // after the soil's touch gives the same order, the water's groups keeping their indices.)
   water_schedule_.reset(), soil_schedule_.reset();
-  std::vector<int>& water_groups = water_schedule_.groups();
   const int threads = s_.threads;
+  touch(water_, water_schedule_.groups());
+  touch(soil_, soil_schedule_.groups());
   const std::vector<int>* rank = threads > 1 ? &colour_rank_ : nullptr;
-  touch(water_, water_groups);
   if (rank) colour_ranks(grid_, colour_rank_);
-  if (const auto order = group_order(water_groups, grid_.blocks(), threads, rank); !order.empty()) {
-    water_.for_each_array([&](auto& values) { apply_order(values, order, threads); });
-    apply_order(water_groups, order, threads);
-  }
-  std::vector<int>& soil_groups = soil_schedule_.groups();
-  touch(soil_, soil_groups);
-  if (rank) colour_ranks(grid_, colour_rank_);
-  if (const auto order = group_order(soil_groups, grid_.blocks(), threads, rank); !order.empty()) {
-    soil_.for_each_array([&](auto& values) { apply_order(values, order, threads); });
-    apply_order(soil_groups, order, threads);
-    if (known_stress_.size() == soil_.size()) apply_order(known_stress_, order, threads);
-  }
+  const auto reorder = [&](Particles<Dim>& P, std::vector<int>& groups, auto&... along) {
+    const auto order = group_order(groups, grid_.blocks(), threads, rank);
+    if (order.empty()) return;
+    P.for_each_array([&](auto& values) { apply_order(values, order, threads); });
+    apply_order(groups, order, threads);
+    (apply_order(along, order, threads), ...);
+  };
+  reorder(water_, water_schedule_.groups());
+  known_stress_.resize(soil_.size());  // (none known for a particle that has none yet)
+  reorder(soil_, soil_schedule_.groups(), known_stress_);
   if (dd_) {
     timed.emplace(times_, StepPhase::halo_plan, wait_clock());
     dd_->prepare(grid_);  // adds the halo blocks after these

@@ -54,6 +54,14 @@ inline void cut_evenly(std::size_t particles, SweepParts& parts) {
   }
 }
 
+// A block's colour: the parities of its coordinates (0 .. 2^Dim - 1).
+template <int Dim>
+std::size_t block_colour(const Index<Dim>& b) {
+  int c = 0;
+  for (int d = 0; d < Dim; ++d) c |= (b[d] & 1) << d;
+  return static_cast<std::size_t>(c);
+}
+
 // rank[b]: the place of block b's group when the groups go colour by colour (the parities of the
 // block coordinates), in index order within a colour: the order P2G's schedule sweeps them.
 // Particles put in this order (group_order's rank) read each part of a colour as one stretch of
@@ -62,11 +70,7 @@ inline void cut_evenly(std::size_t particles, SweepParts& parts) {
 template <int Dim>
 void colour_ranks(const BlockGrid<Dim>& grid, std::vector<int>& rank) {
   constexpr int kColours = 1 << Dim;
-  const auto colour = [&](std::size_t b) {
-    int c = 0;
-    for (int d = 0; d < Dim; ++d) c |= (grid.block_coord(b)[d] & 1) << d;
-    return static_cast<std::size_t>(c);
-  };
+  const auto colour = [&](std::size_t b) { return block_colour(grid.block_coord(b)); };
   std::array<int, kColours + 1> next{};
   for (std::size_t b = 0; b < grid.blocks(); ++b) ++next[colour(b) + 1];
   for (int c = 0; c < kColours; ++c) next[static_cast<std::size_t>(c) + 1] += next[static_cast<std::size_t>(c)];
@@ -148,11 +152,9 @@ class ColourSchedule {
     std::array<std::size_t, kColours> in_part{};
     for (std::size_t b = 0, r = 0; b < grid.blocks(); ++b) {
       if (r == first_[b]) continue;  // no runs in group b
-      const Index<Dim>& g = grid.block_coord(b);
-      int colour = 0;
-      for (int d = 0; d < Dim; ++d) colour |= (g[d] & 1) << d;
-      SweepParts& parts = colours[static_cast<std::size_t>(colour)];
-      std::size_t& filled = in_part[static_cast<std::size_t>(colour)];
+      const std::size_t colour = block_colour(grid.block_coord(b));
+      SweepParts& parts = colours[colour];
+      std::size_t& filled = in_part[colour];
       for (; r < first_[b]; ++r) {
         parts.add_run(by_group_[r]);
         filled += by_group_[r].end - by_group_[r].begin;
