@@ -70,7 +70,7 @@ std::size_t block_colour(const Index<Dim>& b) {
 template <int Dim>
 void colour_ranks(const BlockGrid<Dim>& grid, std::vector<int>& rank) {
   constexpr int kColours = 1 << Dim;
-  const auto colour = [&](std::size_t b) { return block_colour(grid.block_coord(b)); };
+  const auto colour = [&](std::size_t b) { return block_colour<Dim>(grid.block_coord(b)); };
   std::array<int, kColours + 1> next{};
   for (std::size_t b = 0; b < grid.blocks(); ++b) ++next[colour(b) + 1];
   for (int c = 0; c < kColours; ++c) next[static_cast<std::size_t>(c) + 1] += next[static_cast<std::size_t>(c)];
@@ -152,7 +152,7 @@ class ColourSchedule {
     std::array<std::size_t, kColours> in_part{};
     for (std::size_t b = 0, r = 0; b < grid.blocks(); ++b) {
       if (r == first_[b]) continue;  // no runs in group b
-      const std::size_t colour = block_colour(grid.block_coord(b));
+      const std::size_t colour = block_colour<Dim>(grid.block_coord(b));
       SweepParts& parts = colours[colour];
       std::size_t& filled = in_part[colour];
       for (; r < first_[b]; ++r) {
