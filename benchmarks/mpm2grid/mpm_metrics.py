@@ -18,7 +18,9 @@ unless completed), peak RSS of each rank (kB, max and sum over ranks) when RSS_D
 largest kinetic energy in series.csv, dt_first / dt_last / dt_largest: the dt column of series.csv
 (the step before each sample; a step cut to land on a sample time is shorter, never longer),
 outflow_discharge_max: the largest water discharge through the outlet in series.csv (m^2/s in 2D,
-sampled at the output interval; empty without an outlet).
+sampled at the output interval; empty without an outlet), drag_coupled_nodes_rank_mean and _max:
+the consistent drag's coupled nodes per step owned by a rank, mean and most over the ranks (the
+solve's work per rank; empty without the consistent drag).
 Then per phase of the step (run.json "step/<phase>", solvers/mpm2grid/model/step_timers.hpp) and
 the two per-step checks outside it ("dt limit", "blow-up check"): ph_<phase>_mean and ph_<phase>_max,
 its seconds over the run, mean and largest over the ranks, and ph_<phase>_wait, the mean over the
@@ -36,7 +38,8 @@ COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "parti
            "migration_bytes_per_step", "migrated_particles_per_step", "rebalances", "particles_per_rank",
            "drag_ksp_max_iterations", "outflow_water_volume", "eroded_soil_volume", "water_front", "end_time",
            "dt_first", "dt_last", "rss_max_kb", "rss_sum_kb", "kinetic_energy_max", "dt_largest",
-           "halo_messages_per_step", "migration_messages_per_step", "outflow_discharge_max"]
+           "halo_messages_per_step", "migration_messages_per_step", "outflow_discharge_max",
+           "drag_coupled_nodes_rank_mean", "drag_coupled_nodes_rank_max"]
 STEP_PHASES = ["balance", "grid", "halo plan", "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
                "boundary", "halo copy", "g2p water", "g2p soil", "outflow", "inlet", "migrate", "bed shear"]
 CHECKS = ["dt limit", "blow-up check"]
@@ -123,6 +126,10 @@ def metrics(run, rss_dir=None):
         if "particles_per_rank" in d:
             m["particles_per_rank"] = " ".join(str(p) for p in d["particles_per_rank"])
         m["drag_ksp_max_iterations"] = r.get("drag_ksp_max_iterations", "")
+        coupled = r.get("drag_coupled_nodes_per_rank", {})
+        if coupled:
+            m["drag_coupled_nodes_rank_mean"] = f"{coupled['mean']:.6g}"
+            m["drag_coupled_nodes_rank_max"] = f"{coupled['max']:.6g}"
         phases = r.get("phases", {})
         for p in STEP_PHASES + CHECKS:
             v = phases.get(p if p in CHECKS else f"step/{p}")

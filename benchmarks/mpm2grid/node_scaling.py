@@ -50,6 +50,15 @@ COPY = re.compile(r"^(?P<case>[a-z0-9]+)-copy(?P<copy>\d+)$")
 HEAD = ["lease", "case", "kind", "mode", "repeat", "copy", "threads"] + COLUMNS
 
 
+def coupled_share(row):
+    """The consistent drag's coupled nodes on the rank with the most against the mean (the solve's
+    work per rank), as a sentence; empty for runs without them (or from before they were counted)."""
+    mean, most = row.get("drag_coupled_nodes_rank_mean"), row.get("drag_coupled_nodes_rank_max")
+    if not mean or not most or float(mean) == 0:
+        return ""
+    return (f" The drag solve's coupled nodes: {float(most):.0f} on the busiest rank against {float(mean):.0f} "
+            f"on average ({float(most) / float(mean):.1f}x).")
+
 def collect(label, runs_dir):
     rows = []
     for d in sorted(p for p in Path(runs_dir).iterdir() if p.is_dir()):
@@ -145,7 +154,7 @@ def report(rows, machines, png):
                            f"{compute:.3g} s a rank on average (one rank's / {top}: {ideal:.3g} s, so "
                            f"{compute / ideal:.2f}x), its slowest rank per phase {compute_max / compute:.2f}x "
                            f"the mean; waiting in MPI {wait:.3g} s; balancing {balance:.3g} s; the rest of the "
-                           f"communication {comm:.3g} s.")
+                           f"communication {comm:.3g} s." + coupled_share(row))
             if hybrid:
                 out.append("")
                 out += hybrid_table(runs, hybrid, t1)

@@ -2,7 +2,8 @@
 // in 2D and 3D, on 1 and 2 ranks:
 //   a. it solves the block system [[M_s + dt D, -dt D], [-dt D, M_w + dt D]] v = b, compared with
 //      a dense Cholesky solve of the same system that the test assembles from the particles
-//      itself (soil block first, then water: another layout than the class's interleaved rows);
+//      itself (soil block first, then water: another layout than the class's interleaved rows),
+//      also where most soil particles are far from the water (a2: their terms are skipped);
 //   b. it conserves the total momentum sum_i (m_s v_s + m_w v_w) = sum_i (b_s + b_w), for dt far
 //      below and far above the drag relaxation time;
 //   c. with co-located species, a uniform relative velocity and m_s,i / d_i, m_w,i / d_i the same
@@ -276,6 +277,52 @@ TYPED_TEST(ConsistentDragTest, ConservesTotalMomentumForSmallAndLargeSteps) {
       EXPECT_NEAR(momentum[d], b[d], 1e-12 * b_abs[d])
           << "dt = " << ratio << " tau, component " << d << ", " << stats.iterations << " iterations";
   }
+}
+
+// a2. Only the soil particles whose stencils reach a block with coupled nodes add drag terms
+// (ConsistentDrag's assembly skips the others). A soil layer across five blocks along x (a block
+// is 0.4 m) under water over 0.3 m of it: the particles near the water's edge, in blocks without
+// coupled nodes whose stencils reach the next block, must still count. Against the dense solve
+// over all particles, within a's bound; the particles' groups given (as the model's step gives
+// them) or found by the solve give the same velocities bit for bit.
+TYPED_TEST(ConsistentDragTest, SoilAwayFromTheWaterAddsNoTermsAndNoneIsMissed) {
+  constexpr int Dim = TypeParam::value;
+  const mpi::Comm self(MPI_COMM_SELF);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> factor(0.5, 1.5);
+  Scene<Dim> s;
+  const double volume = std::pow(s.h / 2, Dim);
+  const auto layer = [&](double x_lo, double x_hi, int count, Particles<Dim>& P, double density) {
+    for (int p = 0; p < count; ++p) {
+      Vec<Dim> x = uniform_vec<Dim>(rng, 0.45, 0.7);
+      x[0] = std::uniform_real_distribution<double>(x_lo, x_hi)(rng);
+      const double v = volume * factor(rng);
+      P.add(x, uniform_vec<Dim>(rng, -1, 1), density * v, v);
+      if (&P == &s.soil) s.soil_drag.push_back(kDragCoefficient * v);
+    }
+  };
+  layer(1.02, 1.32, Dim == 2 ? 40 : 120, s.water, kWaterDensity);
+  layer(0.05, 1.95, Dim == 2 ? 200 : 600, s.soil, kSoilDensity);
+  Vec<Dim> gravity = Vec<Dim>::Zero();
+  gravity[Dim - 1] = -9.81;
+  s.build(gravity, {}, {});
+  std::vector<int> groups;
+  BlockGrid<Dim> same_grid(s.h);  // the groups as the model's step finds them (the same blocks)
+  touch_blocks(s.water, same_grid);
+  touch_blocks(s.soil, same_grid, &groups);
+  ASSERT_EQ(same_grid.blocks(), s.grid.blocks());
+  const double dt = s.relaxation_time();
+  const Velocities<Dim> reference = dense_solve(s, dt);
+  const auto numbering = NodeNumbering::own_all(self, s.soil_nodes, s.water_nodes);
+  ASSERT_GT(numbering.owned, 10);
+  ConsistentDrag<Dim> drag(self);
+  drag.solve(s.grid, s.soil, s.soil_drag, s.soil_nodes, s.water_nodes, dt, numbering);
+  const Velocities<Dim> found = velocities(s);
+  drag.solve(s.grid, s.soil, s.soil_drag, s.soil_nodes, s.water_nodes, dt, numbering, &groups);
+  const Velocities<Dim> given = velocities(s);
+  const auto all = [](std::size_t) { return true; };
+  EXPECT_LT(largest_difference(found, reference, all), 1e-10 * largest(reference, all));
+  EXPECT_EQ(largest_difference(found, given, all), 0.0);
 }
 
 // c. Co-located species (the same particles, soil and water masses and drag all proportional to

@@ -48,29 +48,52 @@ Vec<Dim> node_local_velocity(const NodeFields<Dim>& f, std::size_t slot, double 
   return m > 0 ? Vec<Dim>((f.momentum[slot] + dt * f.force[slot]) / m) : Vec<Dim>::Zero();
 }
 
+// The blocks that hold a coupled node, where the matrix has its rows: list (in block order) and,
+// for every block of the grid, its place in the list or -1.
+struct CoupledBlocks {
+  std::vector<int> list, place;
+};
+
+template <int Dim>
+CoupledBlocks coupled_blocks(const BlockGrid<Dim>& grid, const NodeNumbering& numbering) {
+  constexpr std::size_t kNodes = BlockGrid<Dim>::kNodes;
+  CoupledBlocks c;
+  c.place.assign(grid.blocks(), -1);
+  for (std::size_t b = 0; b < grid.blocks(); ++b) {
+    const long* g = numbering.global.data() + b * kNodes;
+    if (std::any_of(g, g + kNodes, [](long n) { return n >= 0; })) {
+      c.place[b] = static_cast<int>(c.list.size());
+      c.list.push_back(static_cast<int>(b));
+    }
+  }
+  return c;
+}
+
 // The node slots within 3 spacings of a node along every axis (its 7^Dim "window", x fastest):
 // the nodes a drag entry can couple it to, since both must lie in one particle's 4-wide stencil.
 // A window reaches at most one block further along each axis, so the 3^Dim neighbour blocks of
-// every block are looked up once and the window is then walked with integer arithmetic.
+// every coupled block (the only ones with rows) are looked up once and the window is then walked
+// with integer arithmetic.
 template <int Dim>
 class Windows {
  public:
   static constexpr int kSize = ipow(7, Dim);
 
-  explicit Windows(const BlockGrid<Dim>& grid) : first_(grid.blocks()) {
-    for (std::size_t b = 0; b < grid.blocks(); ++b)
+  Windows(const BlockGrid<Dim>& grid, const CoupledBlocks& coupled) : coupled_(coupled), first_(coupled.list.size()) {
+    for (std::size_t k = 0; k < coupled.list.size(); ++k)
       for (int n = 0; n < kNeighbours; ++n) {
         Index<Dim> corner;
-        for (int d = 0, r = n; d < Dim; ++d, r /= 3) corner[d] = (grid.block_coord(b)[d] + r % 3 - 1) * kSide;
-        const int block = grid.block_of_node(corner);
-        first_[b][static_cast<std::size_t>(n)] = block < 0 ? -1 : static_cast<long>(block) * kNodes;
+        const Index<Dim>& block = grid.block_coord(static_cast<std::size_t>(coupled.list[k]));
+        for (int d = 0, r = n; d < Dim; ++d, r /= 3) corner[d] = (block[d] + r % 3 - 1) * kSide;
+        const int b = grid.block_of_node(corner);
+        first_[k][static_cast<std::size_t>(n)] = b < 0 ? -1 : static_cast<long>(b) * kNodes;
       }
   }
 
   // out[n]: the slot of the window's node n (offset (n % 7 - 3, n / 7 % 7 - 3, ...) from the
-  // node of `slot`), or -1 where the grid has no node.
+  // node of `slot`, which lies in a coupled block), or -1 where the grid has no node.
   void slots(long slot, std::array<long, kSize>& out) const {
-    const auto& first = first_[static_cast<std::size_t>(slot / kNodes)];
+    const auto& first = first_[static_cast<std::size_t>(coupled_.place[static_cast<std::size_t>(slot / kNodes)])];
     Index<Dim> local;
     for (int d = 0, r = static_cast<int>(slot % kNodes); d < Dim; ++d, r /= kSide) local[d] = r % kSide;
     for (int n = 0; n < kSize; ++n) {
@@ -89,7 +112,9 @@ class Windows {
  private:
   static constexpr int kSide = BlockGrid<Dim>::kSide, kNodes = BlockGrid<Dim>::kNodes;
   static constexpr int kNeighbours = ipow(3, Dim);
-  std::vector<std::array<long, kNeighbours>> first_;  // first slot of each neighbour block, or -1
+  const CoupledBlocks& coupled_;
+  std::vector<std::array<long, kNeighbours>> first_;  // per coupled block: first slot of each
+                                                      // neighbour block, or -1
 };
 
 // Upper bounds of the nonzero 2 x 2 blocks per owned node (block row), split as PETSc's
@@ -210,13 +235,13 @@ template <int Dim>
 void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil,
                                    const std::vector<double>& soil_drag, const NodeFields<Dim>& soil_nodes,
                                    const NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering,
-                                   const std::vector<long>& owned_slots, long total) {
+                                   const std::vector<long>& owned_slots, long total, const std::vector<int>* groups) {
   constexpr int kNodes = BlockGrid<Dim>::kNodes, kWindow = Windows<Dim>::kSize;
   ::Mat& matrix = petsc_->matrix;
-  const std::size_t nodes = grid.nodes();
   const auto local_rows = static_cast<PetscInt>(2 * numbering.owned);
   const auto global_rows = static_cast<PetscInt>(2 * total);
-  const Windows<Dim> windows(grid);
+  const CoupledBlocks coupled = coupled_blocks(grid, numbering);
+  const Windows<Dim> windows(grid, coupled);
   std::vector<PetscInt> d_nnz, o_nnz;
   count_nonzeros(windows, numbering, owned_slots, comm_.size() > 1, total - numbering.owned, d_nnz, o_nnz);
 
@@ -231,27 +256,52 @@ void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<D
 
   // D row by row, so that PETSc receives each row once with its columns in increasing order
   // (adding a particle's 4^Dim x 4^Dim block at a time makes PETSc search and shift its rows for
-  // every entry, far slower: docs/mpm2grid.md, "Benchmarks"). First, for every coupled node, the soil
-  // particles whose stencil holds it (compressed rows, counted and then filled).
-  std::vector<Stencil<Dim>> stencils;
-  stencils.reserve(soil.size());
-  std::vector<std::size_t> start(nodes + 1, 0);
-  std::array<long, kNodes> slots;
+  // every entry, far slower: docs/mpm2grid.md, "Benchmarks"). Only the soil particles whose
+  // stencil reaches a coupled block add terms (often a few percent of them: the water has
+  // reached a band of the soil), and only the coupled blocks have rows: the work follows the
+  // coupled nodes, not the grid or all the particles. A stencil reaches the 2^Dim blocks from
+  // the one holding its first node (the particle's group). First, for every node of the coupled
+  // blocks (row r = place of its block x kNodes + its place in the block), the particles whose
+  // stencil holds it (compressed rows, counted and then filled).
+  std::vector<char> near(grid.blocks(), 0);  // blocks from which a stencil reaches a coupled block
+  for (const int b : coupled.list)
+    for (int corner = 0; corner < (1 << Dim); ++corner) {
+      Index<Dim> from = grid.block_coord(static_cast<std::size_t>(b));
+      for (int d = 0; d < Dim; ++d) from[d] -= (corner >> d) & 1;
+      if (const int f = grid.find_block(from); f >= 0) near[static_cast<std::size_t>(f)] = 1;
+    }
   const double h = grid.spacing();
+  std::vector<std::size_t> reaching;  // the soil particles that add terms, in their order
   for (std::size_t p = 0; p < soil.size(); ++p) {
+    const int group =
+        groups ? (*groups)[p] : grid.find_block(BlockGrid<Dim>::block_holding(stencil_base(soil.x[p], h)));
+    if (group >= 0 && near[static_cast<std::size_t>(group)]) reaching.push_back(p);
+  }
+  const auto row_of = [&](long slot) {
+    const int place = coupled.place[static_cast<std::size_t>(slot / kNodes)];
+    return place < 0 || numbering.global[static_cast<std::size_t>(slot)] < 0
+               ? -1L
+               : static_cast<long>(place) * kNodes + slot % kNodes;
+  };
+  const std::size_t rows = coupled.list.size() * static_cast<std::size_t>(kNodes);
+  std::vector<Stencil<Dim>> stencils;
+  stencils.reserve(reaching.size());
+  std::vector<std::size_t> start(rows + 1, 0);
+  std::array<long, kNodes> slots;
+  for (const std::size_t p : reaching) {
     stencils.emplace_back(soil.x[p], h);
     grid.stencil_slots(stencils.back(), slots);
     for (const long slot : slots)
-      if (numbering.global[static_cast<std::size_t>(slot)] >= 0) ++start[static_cast<std::size_t>(slot) + 1];
+      if (const long r = row_of(slot); r >= 0) ++start[static_cast<std::size_t>(r) + 1];
   }
-  for (std::size_t i = 0; i < nodes; ++i) start[i + 1] += start[i];
-  std::vector<std::size_t> touching(start[nodes]);
+  for (std::size_t r = 0; r < rows; ++r) start[r + 1] += start[r];
+  std::vector<std::size_t> touching(start[rows]);  // places in `reaching`
   {
     std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (std::size_t p = 0; p < soil.size(); ++p) {
-      grid.stencil_slots(stencils[p], slots);
+    for (std::size_t k = 0; k < reaching.size(); ++k) {
+      grid.stencil_slots(stencils[k], slots);
       for (const long slot : slots)
-        if (numbering.global[static_cast<std::size_t>(slot)] >= 0) touching[next[static_cast<std::size_t>(slot)]++] = p;
+        if (const long r = row_of(slot); r >= 0) touching[next[static_cast<std::size_t>(r)]++] = k;
     }
   }
 
@@ -260,29 +310,29 @@ void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<D
   // i is owned, and the two rows 2 g_i (soil) and 2 g_i + 1 (water) with 2 x 2 blocks
   // [[m_s + dt D, -dt D], [-dt D, m_w + dt D]] (masses on j = i only). Columns of nodes that are
   // not coupled are dropped. Rows of other ranks' nodes go through PETSc's stash.
-  std::vector<char> owned(nodes, 0);
-  for (const long slot : owned_slots) owned[static_cast<std::size_t>(slot)] = 1;
   std::array<double, kWindow> acc;
   std::array<long, kWindow> window;
   std::vector<std::pair<long, double>> columns;  // (global node j, D_ij)
   std::vector<PetscInt> cols;
   std::vector<PetscScalar> values;
-  for (std::size_t i = 0; i < nodes; ++i) {
+  for (std::size_t r = 0; r < rows; ++r) {
+    const auto i = static_cast<std::size_t>(coupled.list[r / kNodes]) * kNodes + r % kNodes;  // slot
     const long gi = numbering.global[i];
-    if (gi < 0 || (start[i] == start[i + 1] && !owned[i])) continue;
+    const bool owned = numbering.owns(gi);
+    if (gi < 0 || (start[r] == start[r + 1] && !owned)) continue;
     const Index<Dim> node = grid.node_of(static_cast<long>(i));
     acc.fill(0.0);
-    for (std::size_t t = start[i]; t < start[i + 1]; ++t) {
-      const std::size_t p = touching[t];
-      const Stencil<Dim>& s = stencils[p];
+    for (std::size_t t = start[r]; t < start[r + 1]; ++t) {
+      const std::size_t k = touching[t];
+      const Stencil<Dim>& s = stencils[k];
       Index<Dim> origin;
       double wi = 1;
       for (int d = 0; d < Dim; ++d) {
-        const int k = node[d] - s.base[d];  // 0 .. 3: i lies in the stencil
-        wi *= s.w[d][static_cast<std::size_t>(k)];
-        origin[d] = 3 - k;
+        const int o = node[d] - s.base[d];  // 0 .. 3: i lies in the stencil
+        wi *= s.w[d][static_cast<std::size_t>(o)];
+        origin[d] = 3 - o;
       }
-      add_stencil<Dim>(s, origin, soil_drag[p] * wi, acc.data());
+      add_stencil<Dim>(s, origin, soil_drag[reaching[k]] * wi, acc.data());
     }
     windows.slots(static_cast<long>(i), window);
     columns.clear();
@@ -297,7 +347,7 @@ void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<D
     const std::size_t width = 2 * columns.size();
     cols.resize(width);
     values.resize(2 * width);
-    const double ms = owned[i] ? soil_nodes.mass[i] : 0.0, mw = owned[i] ? water_nodes.mass[i] : 0.0;
+    const double ms = owned ? soil_nodes.mass[i] : 0.0, mw = owned ? water_nodes.mass[i] : 0.0;
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const long gj = columns[c].first;
       const double v = dt * columns[c].second;
@@ -321,7 +371,8 @@ void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<D
 template <int Dim>
 SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particles<Dim>& soil,
                                       const std::vector<double>& soil_drag, NodeFields<Dim>& soil_nodes,
-                                      NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering) {
+                                      NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering,
+                                      const std::vector<int>* groups) {
   const std::size_t nodes = grid.nodes();
   // The owned slots in global order, and the checks. Every rank takes part in the same
   // collectives whatever it finds, and a problem on any rank stops every rank here rather than
@@ -339,6 +390,8 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
                           soil_nodes.mass.size(), water_nodes.mass.size(), numbering.global.size(), nodes);
   else if (soil_drag.size() != soil.size())
     problem = fmt::format("{} drag coefficients for {} soil particles", soil_drag.size(), soil.size());
+  else if (groups && groups->size() != soil.size())
+    problem = fmt::format("{} groups for {} soil particles", groups->size(), soil.size());
   else if (!(dt >= 0))
     problem = fmt::format("dt = {} must be >= 0", dt);
   else if (owned < 0 || numbering.first != lower)
@@ -374,7 +427,7 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
     water_nodes.velocity[slot] = node_local_velocity(water_nodes, slot, dt);
   }
 
-  assemble(grid, soil, soil_drag, soil_nodes, water_nodes, dt, numbering, owned_slots, total);
+  assemble(grid, soil, soil_drag, soil_nodes, water_nodes, dt, numbering, owned_slots, total, groups);
   KSP ksp = petsc_->ksp;
   ::Mat matrix = petsc_->matrix;
   ::Vec& rhs = petsc_->rhs;
@@ -392,6 +445,7 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
 
   SolveStats stats;
   stats.unknowns = 2 * total;
+  stats.owned_nodes = owned;
   for (int d = 0; d < Dim; ++d) {
     PetscScalar* b = nullptr;
     SUITE_PETSC_CHECK(VecGetArray(rhs, &b));

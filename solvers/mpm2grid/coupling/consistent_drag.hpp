@@ -83,6 +83,7 @@ struct NodeNumbering {
 // What one solve did, over the Dim components.
 struct SolveStats {
   long unknowns = 0;         // rows of the global system (2 x coupled nodes)
+  long owned_nodes = 0;      // the coupled nodes this rank owns (its share of the solve's work)
   int iterations = 0;        // most Krylov iterations of a component
   double residual_norm = 0;  // largest final residual norm of a component (the KSP's norm type)
   int reason = 0;            // PETSc's KSPConvergedReason of the component with the most iterations
@@ -104,18 +105,21 @@ class ConsistentDrag {
   // on ghost slots nothing. soil: this rank's soil particles, soil_drag their (c_E V)_p in kg/s
   // (one per particle); their stencils must lie in `grid`. The node fields hold mass, momentum
   // and force (gravity included) for every slot of `grid`; on owned nodes they must be complete
-  // (summed over ranks). COLLECTIVE on the comm. Throws LibraryError naming the prefix and
-  // PETSc's reason when the Krylov solve diverges, std::invalid_argument on inconsistent sizes.
+  // (summed over ranks). groups: the soil particles' groups (the block holding each stencil's
+  // first node: touch_blocks, find_groups), found here when null. COLLECTIVE on the comm. Throws
+  // LibraryError naming the prefix and PETSc's reason when the Krylov solve diverges,
+  // std::invalid_argument on inconsistent sizes.
   SolveStats solve(const BlockGrid<Dim>& grid, const Particles<Dim>& soil, const std::vector<double>& soil_drag,
-                   NodeFields<Dim>& soil_nodes, NodeFields<Dim>& water_nodes, double dt,
-                   const NodeNumbering& numbering);
+                   NodeFields<Dim>& soil_nodes, NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering,
+                   const std::vector<int>* groups = nullptr);
 
   const std::string& prefix() const { return prefix_; }
 
  private:
   void assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil, const std::vector<double>& soil_drag,
                 const NodeFields<Dim>& soil_nodes, const NodeFields<Dim>& water_nodes, double dt,
-                const NodeNumbering& numbering, const std::vector<long>& owned_slots, long total);
+                const NodeNumbering& numbering, const std::vector<long>& owned_slots, long total,
+                const std::vector<int>* groups);
 
   struct Petsc;  // the KSP, the matrix (rebuilt every call: the pattern follows the particles)
                  // and the vectors (kept while this rank's size stays the same)

@@ -418,14 +418,16 @@ void Simulation<Dim>::solve_grid(double dt) {
   }
   if (!dd_) {
     const auto numbering = NodeNumbering::own_all(*comm_, soil_nodes_, water_nodes_);
-    drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering);
+    drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering,
+                                     &soil_schedule_.groups());
     free_water_velocities(dt);
     return;
   }
   // Owners number their coupled nodes; the ghost copies learn the owners' numbers.
   auto numbering = NodeNumbering::own_blocks(*comm_, soil_nodes_, water_nodes_, dd_->owned_blocks());
   dd_->copy_to_ghosts(numbering.global);
-  drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering);
+  drag_stats_ =
+      consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering, &soil_schedule_.groups());
   free_water_velocities(dt);
 }
 

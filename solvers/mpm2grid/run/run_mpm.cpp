@@ -252,6 +252,7 @@ class MpmRun {
     ++p_.limiters[limit.limiter];
     p_.dt_cap *= 1.25;  // infinity stays infinity
     drag_iterations_ = std::max(drag_iterations_, static_cast<long long>(sim_.drag_stats().iterations));
+    drag_owned_nodes_ += sim_.drag_stats().owned_nodes;
     // After the first solve every solver has read its options: one nothing read is a mistake.
     if (petsc_ && sim_.steps() == first_step_ + 1)
       if (const auto unused = petsc_->unused_options(); !unused.empty())
@@ -507,7 +508,16 @@ class MpmRun {
   // What run.json holds beside the timers, for a finished or a stopped run. COLLECTIVE.
   void record_extras() {
     record_.extra()["dt_limiters"] = p_.limiters;
-    if (scene_.simulation.drag == DragScheme::consistent) record_.extra()["drag_ksp_max_iterations"] = drag_iterations_;
+    if (scene_.simulation.drag == DragScheme::consistent) {
+      record_.extra()["drag_ksp_max_iterations"] = drag_iterations_;
+      // The solve's work per rank: its coupled nodes per step (this run's steps, or since the
+      // restart), least, mean and most over the ranks. Every rank waits in the Krylov
+      // iterations' reductions for the one with the most.
+      const double steps = static_cast<double>(std::max(1LL, sim_.steps() - first_step_));
+      const double mine = static_cast<double>(drag_owned_nodes_) / steps;
+      record_.extra()["drag_coupled_nodes_per_rank"] = {
+          {"min", comm_.min(mine)}, {"mean", comm_.sum(mine) / comm_.size()}, {"max", comm_.max(mine)}};
+    }
     if (implicit()) {
       // This run's (or its part since the restart: the counts start with the simulation), per step.
       const ImplicitState<Dim>& im = sim_.implicit();
@@ -584,6 +594,7 @@ class MpmRun {
   DecompositionStats traffic_before_;  // the decomposition's counts when the steps began
   std::optional<ParticleExtremes> extremes_;  // the last blow-up check's, while the particles stay as it saw them
   long long drag_iterations_ = 0;  // most KSP iterations of one consistent drag solve in this run
+  long long drag_owned_nodes_ = 0;      // coupled nodes this rank owned, summed over this run's steps
   long long first_step_ = 0;            // the step this run (or its restart) began at
   long long last_checkpoint_step_ = -1;  // the step of the newest checkpoint of this run
   RunProgress p_;
