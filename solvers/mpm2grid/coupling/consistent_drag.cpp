@@ -257,9 +257,10 @@ void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<D
   // D row by row, so that PETSc receives each row once with its columns in increasing order
   // (adding a particle's 4^Dim x 4^Dim block at a time makes PETSc search and shift its rows for
   // every entry, far slower: docs/mpm2grid.md, "Benchmarks"). Only the soil particles whose
-  // stencil reaches a coupled block add terms (often a few percent of them: the water has
-  // reached a band of the soil), and only the coupled blocks have rows: the work follows the
-  // coupled nodes, not the grid or all the particles. A stencil reaches the 2^Dim blocks from
+  // stencil reaches a coupled block add terms (at the start of example 2 those near the
+  // reservoir's face: 1,019 coupled nodes against 248k soil particles at h = 0.025 m), and only
+  // the coupled blocks have rows: the work follows the coupled nodes, not the grid or all the
+  // particles. A stencil reaches the 2^Dim blocks from
   // the one holding its first node (the particle's group). First, for every node of the coupled
   // blocks (row r = place of its block x kNodes + its place in the block), the particles whose
   // stencil holds it (compressed rows, counted and then filled).
