@@ -76,6 +76,24 @@ if second_ranks > 1:
     print(f"2 ranks: particles per rank {dd['particles_per_rank']}, halo {dd['halo_bytes_per_step']:.0f} bytes/step, "
           f"{dd['migrated_particles_per_step']:.2f} particles migrated/step, {dd['rebalances']} rebalances")
 
+# With the consistent drag, run.json's coupled nodes per rank (the solve's rows) add up over the
+# ranks to the one-rank run's: every coupled node has exactly one owner. The same nodes are coupled
+# on both runs (both species' masses on a node, which round-off cannot bring to zero), so the sums
+# per step, averaged over the same steps, agree to the averages' round-off.
+coupled = []
+for d in (one, two):
+    with open(os.path.join(d, "run.json")) as f:
+        coupled.append(json.load(f).get("drag_coupled_nodes_per_rank"))
+if coupled[0] is not None:
+    (c1, c2) = coupled
+    assert c1["min"] == c1["mean"] == c1["max"], f"{one}/run.json: one rank, yet coupled nodes {c1}"
+    assert c2["min"] <= c2["mean"] <= c2["max"], f"{two}/run.json: coupled nodes {c2}"
+    total = c2["mean"] * second_ranks
+    assert c1["mean"] > 0 and abs(total - c1["mean"]) <= 1e-9 * c1["mean"], (
+        f"coupled nodes per step: {c1['mean']} on one rank, {total} summed over {second_ranks}")
+    print(f"coupled nodes per step: {c1['mean']:.1f} on one rank; on {second_ranks}: {c2['min']:.1f} to "
+          f"{c2['max']:.1f} a rank, {total:.1f} in all")
+
 # The step's breakdown in run.json (solvers/mpm2grid/model/step_timers.hpp) accounts for the step:
 # its phases are disjoint and cover Simulation::step() but for a few assignments, so per rank
 # their times add up to the "step" phase; the mean over the ranks is linear, so the phases' means
