@@ -59,6 +59,7 @@ def coupled_share(row):
     return (f" The drag solve's coupled nodes: {float(most):.0f} on the busiest rank against {float(mean):.0f} "
             f"on average ({float(most) / float(mean):.1f}x).")
 
+
 def collect(label, runs_dir):
     rows = []
     for d in sorted(p for p in Path(runs_dir).iterdir() if p.is_dir()):
