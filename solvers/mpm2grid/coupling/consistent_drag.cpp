@@ -260,10 +260,10 @@ void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<D
   // stencil reaches a coupled block add terms (at the start of example 2 those near the
   // reservoir's face: 1,019 coupled nodes against 248k soil particles at h = 0.025 m), and only
   // the coupled blocks have rows: the work follows the coupled nodes, not the grid or all the
-  // particles. A stencil reaches the 2^Dim blocks from
-  // the one holding its first node (the particle's group). First, for every node of the coupled
-  // blocks (row r = place of its block x kNodes + its place in the block), the particles whose
-  // stencil holds it (compressed rows, counted and then filled).
+  // particles. A stencil reaches the 2^Dim blocks from the one holding its first node (the
+  // particle's group). First, for every node of the coupled blocks (row r = place of its block x
+  // kNodes + its place in the block), the particles whose stencil holds it (compressed rows,
+  // counted and then filled).
   std::vector<char> near(grid.blocks(), 0);  // blocks from which a stencil reaches a coupled block
   for (const int b : coupled.list)
     for (int corner = 0; corner < (1 << Dim); ++corner) {

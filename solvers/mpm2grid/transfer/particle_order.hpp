@@ -21,11 +21,12 @@ namespace suite::mpm2grid {
 // present order (a counting sort); or an empty one when the particles already come in at most
 // twice as many runs as there are groups. Reordering copies every particle; an extra run costs
 // a tile's load and flush in each transfer. Late in example 2 (h = 0.1 m, 60k water particles,
-// 10.0 -> 10.6 s, one thread) an extra run cost 0.18 us a step and a reordering of the water 1.4 ms,
-// with some 180 runs more each step: the step's cost of both is flat between 2 and 3 runs per
-// group (0.34 and 0.35 ms, against 0.83 ms at the 1.25 used before; step 4.4% faster at 2).
-// `threads` count the runs and groups. With `rank`, the groups go in the order of rank[group] instead of
-// their indices (a permutation of 0 .. blocks - 1: sweep_schedule.hpp's colour order).
+// 10.0 -> 10.6 s, one thread) an extra run cost 0.18 us a step and a reordering of the water
+// 1.4 ms, with some 180 runs more each step: the step's cost of both is flat between 2 and 3
+// runs per group (0.34 and 0.35 ms, against 0.83 ms at the 1.25 used before; step 4.4% faster
+// at 2). `threads` count the runs and groups. With `rank`, the groups go in the order of
+// rank[group] instead of their indices (a permutation of 0 .. blocks - 1: sweep_schedule.hpp's
+// colour order).
 inline std::vector<std::size_t> group_order(const std::vector<int>& group, std::size_t blocks, int threads = 1,
                                             const std::vector<int>* rank = nullptr) {
   // A group's first particle starts a run: marking the groups of the runs' first particles finds
