@@ -30,7 +30,7 @@ TEST(Partition, BalancesBothSpeciesOverConnectedParts) {
       weights.push_back(i < 8 ? std::array<long long, 2>{100, 0} : std::array<long long, 2>{0, 30});
     }
   for (const int parts : {2, 3, 4}) {
-    const auto part = partition_blocks<2>(blocks, weights, parts);
+    const auto part = partition_blocks(block_graph<2>(blocks), weights, parts);
     std::vector<std::array<long long, 2>> load(static_cast<std::size_t>(parts), {0, 0});
     for (std::size_t b = 0; b < blocks.size(); ++b)
       for (int s = 0; s < 2; ++s)

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
 #include "core/errors.hpp"
+#include "solvers/mpm2grid/decomposition/diffuse_partition.hpp"
 #include "solvers/mpm2grid/decomposition/exchange.hpp"
 #include "solvers/mpm2grid/decomposition/partition.hpp"
 #include "solvers/mpm2grid/transfer/apic.hpp"
@@ -210,13 +213,15 @@ bool DomainDecomposition<Dim>::balance(long long step, Particles<Dim>& water, Pa
     if (worst <= s_.imbalance) return false;
     ++stats_.rebalances;
   }
-  partition(water, soil);
+  partition(water, soil, force);
+  const long long before = stats_.migrated;
   migrate(water, soil);
+  if (!force) stats_.rebalance_migrated += stats_.migrated - before;
   return true;
 }
 
 template <int Dim>
-void DomainDecomposition<Dim>::partition(const Particles<Dim>& water, const Particles<Dim>& soil) {
+void DomainDecomposition<Dim>::partition(const Particles<Dim>& water, const Particles<Dim>& soil, bool first) {
   // This rank's blocks in use (its particles' stencils) with the particles whose home they are.
   struct Entry {
     BlockOwners::Key key;
@@ -254,19 +259,35 @@ void DomainDecomposition<Dim>::partition(const Particles<Dim>& water, const Part
     previous.push_back(owners_.owner(key));
     work.push_back(w[0] + w[1]);
   }
-  // METIS runs on rank 0 and its answer is broadcast: every rank gets the same table.
-  // A failure there stops every rank (none is left waiting in the broadcast).
-  std::vector<int> ranks(keys.size(), 0);
+  // The new owners are found on rank 0 and broadcast: every rank gets the same table (the last
+  // entry says whether the diffusion found them). A failure there stops every rank (none is
+  // left waiting in the broadcast).
+  std::vector<int> ranks(keys.size() + 1, 0);
   std::string problem;
+  const auto started = std::chrono::steady_clock::now();
   if (comm_.is_root()) try {
-      ranks = keep_ranks(partition_blocks<Dim>(coords, weights, comm_.size()), previous, work, comm_.size());
+      const BlockGraph graph = block_graph<Dim>(coords);
+      std::optional<Diffused> diffused;
+      if (!first && s_.diffuse)
+        diffused = diffuse_partition(graph, weights, previous, comm_.size(), s_.diffusion_target());
+      if (diffused) {
+        std::copy(diffused->part.begin(), diffused->part.end(), ranks.begin());
+        ranks.back() = 1;
+      } else {
+        const auto parts = keep_ranks(partition_blocks(graph, weights, comm_.size()), previous, work, comm_.size());
+        std::copy(parts.begin(), parts.end(), ranks.begin());
+      }
     } catch (const std::exception& e) {
       problem = e.what();
       if (problem.empty()) problem = "the partition failed";
     }
+  if (!first && comm_.is_root())
+    stats_.partition_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   comm_.broadcast(problem);
   if (!problem.empty()) throw LibraryError("partitioning the grid blocks: " + problem);
-  if (!ranks.empty()) SUITE_MPI_CHECK(MPI_Bcast(ranks.data(), static_cast<int>(ranks.size()), MPI_INT, 0, comm_.raw()));
+  SUITE_MPI_CHECK(MPI_Bcast(ranks.data(), static_cast<int>(ranks.size()), MPI_INT, 0, comm_.raw()));
+  stats_.diffused += ranks.back();
+  ranks.pop_back();
   owners_.assign(keys, ranks);
 }
 

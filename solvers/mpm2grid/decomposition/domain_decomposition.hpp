@@ -12,11 +12,15 @@
 //   migrate()         after the particles moved: each goes to the rank owning its new home block.
 // balance() measures the load every `check_every` steps: the particle counts of each species per
 // rank (deterministic, unlike timings, so a restart repeats the same decisions bit for bit).
-// When the most loaded rank holds more than `imbalance` times the mean of a species, the blocks
-// in use are partitioned again with METIS (partition.hpp), keeping each part on the rank that
-// held most of its work, and the particles move to their new owners.
+// When the most loaded rank holds more than `imbalance` times the mean of a species, blocks on
+// the ranks' borders move between neighbouring ranks until every species is within a third of
+// that margin of its mean (diffuse_partition.hpp); where that fails (and for the first
+// distribution, or with `repartition = fresh`) the blocks in use are partitioned afresh with
+// METIS (partition.hpp), each part kept on the rank that held most of its work. Then the
+// particles move to their new owners.
 // No rank holds the whole grid or solution: only its blocks, its ghosts and the owner table
 // (one integer per block).
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -32,11 +36,18 @@ namespace suite::mpm2grid {
 struct DecompositionSettings {
   int check_every = 20;    // steps between load measurements
   double imbalance = 1.1;  // rebalance above this ratio of the largest to the mean particle count
+  bool diffuse = true;     // rebalance by moving border blocks (false: a fresh METIS partition)
+  // What a diffusive rebalance must reach: a third of the margin (1.033 for 1.1), at least
+  // METIS's 1%.
+  double diffusion_target() const { return std::max(1.01, 1 + (imbalance - 1) / 3); }
 };
 
 // What this rank did, summed since the run (or its restart) began.
 struct DecompositionStats {
   long long rebalances = 0;       // partitions after the first
+  long long diffused = 0;         // of those, by moving border blocks (the others by METIS)
+  long long rebalance_migrated = 0;  // particles sent to other ranks by those
+  double partition_seconds = 0;      // rank 0's time finding their owner tables (0 elsewhere)
   long long halo_bytes = 0;       // sent in reverse sums and forward copies
   long long halo_messages = 0;    // point-to-point messages of those
   long long migration_bytes = 0;  // sent with migrating particles
@@ -108,7 +119,8 @@ class DomainDecomposition {
 
  private:
   Index<Dim> home(const Vec<Dim>& x) const;
-  void partition(const Particles<Dim>& water, const Particles<Dim>& soil);
+  // `first`: the first distribution (METIS, whatever the settings).
+  void partition(const Particles<Dim>& water, const Particles<Dim>& soil, bool first);
 
   mpi::Comm comm_;
   DecompositionSettings s_;

@@ -13,26 +13,17 @@
 namespace suite::mpm2grid {
 
 template <int Dim>
-std::vector<int> partition_blocks(const std::vector<Index<Dim>>& blocks,
-                                  const std::vector<std::array<long long, 2>>& weights, int parts) {
-  const std::size_t n = blocks.size();
-  if (weights.size() != n) throw LibraryError("partition_blocks: one weight pair per block expected");
-  std::vector<int> part(n, 0);
-  if (parts <= 1 || n == 0) return part;
-  if (n <= static_cast<std::size_t>(parts)) {
-    for (std::size_t i = 0; i < n; ++i) part[i] = static_cast<int>(i);
-    return part;
-  }
-  // The adjacency graph in compressed rows: the 3^Dim - 1 neighbours of each block that exist.
+BlockGraph block_graph(const std::vector<Index<Dim>>& blocks) {
   using Grid = BlockGrid<Dim>;
-  std::unordered_map<typename Grid::Key, idx_t> index;
+  const std::size_t n = blocks.size();
+  std::unordered_map<typename Grid::Key, int> index;
   index.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) index.emplace(Grid::key(blocks[i]), static_cast<idx_t>(i));
+  for (std::size_t i = 0; i < n; ++i) index.emplace(Grid::key(blocks[i]), static_cast<int>(i));
   int around = 1;
   for (int d = 0; d < Dim; ++d) around *= 3;
-  std::vector<idx_t> xadj{0}, adjncy;
-  xadj.reserve(n + 1);
-  adjncy.reserve(n * static_cast<std::size_t>(around - 1));
+  BlockGraph g;
+  g.start.reserve(n + 1);
+  g.next.reserve(n * static_cast<std::size_t>(around - 1));
   for (std::size_t i = 0; i < n; ++i) {
     for (int o = 0; o < around; ++o) {
       Index<Dim> b = blocks[i];
@@ -45,10 +36,24 @@ std::vector<int> partition_blocks(const std::vector<Index<Dim>>& blocks,
       }
       if (centre) continue;
       const auto it = index.find(Grid::key(b));
-      if (it != index.end()) adjncy.push_back(it->second);
+      if (it != index.end()) g.next.push_back(it->second);
     }
-    xadj.push_back(static_cast<idx_t>(adjncy.size()));
+    g.start.push_back(static_cast<int>(g.next.size()));
   }
+  return g;
+}
+
+std::vector<int> partition_blocks(const BlockGraph& graph, const std::vector<std::array<long long, 2>>& weights,
+                                  int parts) {
+  const std::size_t n = graph.size();
+  if (weights.size() != n) throw LibraryError("partition_blocks: one weight pair per block expected");
+  std::vector<int> part(n, 0);
+  if (parts <= 1 || n == 0) return part;
+  if (n <= static_cast<std::size_t>(parts)) {
+    for (std::size_t i = 0; i < n; ++i) part[i] = static_cast<int>(i);
+    return part;
+  }
+  std::vector<idx_t> xadj(graph.start.begin(), graph.start.end()), adjncy(graph.next.begin(), graph.next.end());
   // The constraints: the species present anywhere (one weight of 1 per block if none is).
   std::array<long long, 2> total{0, 0};
   for (const auto& w : weights) total[0] += w[0], total[1] += w[1];
@@ -109,9 +114,7 @@ std::vector<int> keep_ranks(const std::vector<int>& parts, const std::vector<int
   return out;
 }
 
-template std::vector<int> partition_blocks<2>(const std::vector<Index<2>>&,
-                                              const std::vector<std::array<long long, 2>>&, int);
-template std::vector<int> partition_blocks<3>(const std::vector<Index<3>>&,
-                                              const std::vector<std::array<long long, 2>>&, int);
+template BlockGraph block_graph<2>(const std::vector<Index<2>>&);
+template BlockGraph block_graph<3>(const std::vector<Index<3>>&);
 
 }  // namespace suite::mpm2grid

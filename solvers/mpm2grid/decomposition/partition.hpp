@@ -14,13 +14,21 @@
 
 namespace suite::mpm2grid {
 
+// The blocks' adjacency in compressed rows: block i's neighbours (the 3^Dim - 1 around it that
+// are in the list) are next[start[i] .. start[i + 1]), in increasing offset order.
+struct BlockGraph {
+  std::vector<int> start{0}, next;
+  std::size_t size() const { return start.size() - 1; }
+};
+template <int Dim>
+BlockGraph block_graph(const std::vector<Index<Dim>>& blocks);
+
 // The part (0 .. parts - 1) of every block. weights[i] = {soil, water} particles in block i.
 // A species with no particle anywhere is no constraint; blocks without particles weigh nothing
 // but still join their neighbours' parts through the graph. Deterministic: the same input gives
 // the same parts on every rank. Throws LibraryError when METIS fails.
-template <int Dim>
-std::vector<int> partition_blocks(const std::vector<Index<Dim>>& blocks,
-                                  const std::vector<std::array<long long, 2>>& weights, int parts);
+std::vector<int> partition_blocks(const BlockGraph& graph, const std::vector<std::array<long long, 2>>& weights,
+                                  int parts);
 
 // Renames the parts: previous[i] is block i's rank before (-1: none), weight[i] its work. Pairs
 // of (new part, old rank) are matched greedily by the work they share, largest first; parts

@@ -550,6 +550,9 @@ class MpmRun {
     j["ranks"] = comm_.size();
     j["steps"] = steps;
     j["rebalances"] = st.rebalances;
+    j["rebalances_diffused"] = st.diffused;
+    j["rebalance_migrated_particles"] = comm_.sum(st.rebalance_migrated - before.rebalance_migrated);
+    j["rebalance_partition_s"] = comm_.max(st.partition_seconds - before.partition_seconds);
     j["imbalance_at_last_check"] = st.imbalance;
     j["halo_bytes_per_step"] = static_cast<double>(comm_.sum(st.halo_bytes)) * per_step;
     j["halo_messages_per_step"] = static_cast<double>(comm_.sum(st.halo_messages)) * per_step;
