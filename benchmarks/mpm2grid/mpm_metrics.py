@@ -20,7 +20,13 @@ largest kinetic energy in series.csv, dt_first / dt_last / dt_largest: the dt co
 outflow_discharge_max: the largest water discharge through the outlet in series.csv (m^2/s in 2D,
 sampled at the output interval; empty without an outlet), drag_coupled_nodes_rank_mean and _max:
 the consistent drag's coupled nodes per step owned by a rank, mean and most over the ranks (the
-solve's work per rank; empty without the consistent drag).
+solve's work per rank; empty without the consistent drag). From run.json's per_rank block (over
+several ranks; the compute phases' own seconds, waits taken off, summed per rank):
+rank_compute_spread, the most loaded rank's compute over the mean; rank_work_spread, the same of
+the particle-steps (water and soil); rank_cost_spread, of the compute per particle-step (a rank
+that is slower over the same work: its core); rank_slowest_same, the share of the compute phases
+(each over 1% of the compute) whose slowest rank is the rank slowest over all of them (1: one
+rank slow everywhere, as a slow core or more work would be; near 1 / ranks: chance).
 Then per phase of the step (run.json "step/<phase>", solvers/mpm2grid/model/step_timers.hpp) and
 the two per-step checks outside it ("dt limit", "blow-up check"): ph_<phase>_mean and ph_<phase>_max,
 its seconds over the run, mean and largest over the ranks, and ph_<phase>_wait, the mean over the
@@ -39,7 +45,8 @@ COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "parti
            "drag_ksp_max_iterations", "outflow_water_volume", "eroded_soil_volume", "water_front", "end_time",
            "dt_first", "dt_last", "rss_max_kb", "rss_sum_kb", "kinetic_energy_max", "dt_largest",
            "halo_messages_per_step", "migration_messages_per_step", "outflow_discharge_max",
-           "drag_coupled_nodes_rank_mean", "drag_coupled_nodes_rank_max"]
+           "drag_coupled_nodes_rank_mean", "drag_coupled_nodes_rank_max", "rank_compute_spread",
+           "rank_work_spread", "rank_cost_spread", "rank_slowest_same"]
 STEP_PHASES = ["balance", "grid", "halo plan", "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
                "boundary", "halo copy", "g2p water", "g2p soil", "outflow", "inlet", "migrate", "bed shear"]
 CHECKS = ["dt limit", "blow-up check"]
@@ -86,6 +93,26 @@ def particles_mean(rows):
     return total / weight if weight > 0 else (count(rows[0]) if rows else float("nan"))
 
 
+def per_rank_spreads(per_rank):
+    """The rank_* columns from run.json's per_rank block (empty without one)."""
+    if not per_rank:
+        return {}
+    step, wait = per_rank["step_s"], per_rank["wait_s"]
+    ranks = len(per_rank["soil_particle_steps"])
+    own = {p: [t - w for t, w in zip(step[p], wait.get(p, [0.0] * ranks))] for p in COMPUTE_PHASES if p in step}
+    compute = [sum(v[r] for v in own.values()) for r in range(ranks)]
+    work = [a + b for a, b in zip(per_rank["water_particle_steps"], per_rank["soil_particle_steps"])]
+    if min(work) <= 0 or sum(compute) <= 0:
+        return {}
+    spread = lambda v: max(v) * len(v) / sum(v)
+    slowest = compute.index(max(compute))
+    big = [v for v in own.values() if sum(v) > 0.01 * sum(compute)]
+    same = sum(v.index(max(v)) == slowest for v in big) / len(big)
+    return {"rank_compute_spread": f"{spread(compute):.4g}", "rank_work_spread": f"{spread(work):.4g}",
+            "rank_cost_spread": f"{spread([c / w for c, w in zip(compute, work)]):.4g}",
+            "rank_slowest_same": f"{same:.3g}"}
+
+
 def metrics(run, rss_dir=None):
     run = Path(run)
     m = dict.fromkeys(COLUMNS, "")
@@ -130,6 +157,7 @@ def metrics(run, rss_dir=None):
         if coupled:
             m["drag_coupled_nodes_rank_mean"] = f"{coupled['mean']:.6g}"
             m["drag_coupled_nodes_rank_max"] = f"{coupled['max']:.6g}"
+        m.update(per_rank_spreads(r.get("per_rank")))
         phases = r.get("phases", {})
         for p in STEP_PHASES + CHECKS:
             v = phases.get(p if p in CHECKS else f"step/{p}")

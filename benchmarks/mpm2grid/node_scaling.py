@@ -50,6 +50,17 @@ COPY = re.compile(r"^(?P<case>[a-z0-9]+)-copy(?P<copy>\d+)$")
 HEAD = ["lease", "case", "kind", "mode", "repeat", "copy", "threads"] + COLUMNS
 
 
+def rank_spreads(row):
+    """Per rank (run.json's per_rank, mpm_metrics.py's rank_* columns): whether the slowest rank had
+    more work or was slower over the same work, as a sentence; empty for runs from before."""
+    if not row.get("rank_compute_spread"):
+        return ""
+    return (f" Per rank, compute over the run: the slowest {float(row['rank_compute_spread']):.2f}x the mean, "
+            f"particle-steps {float(row['rank_work_spread']):.3f}x, compute per particle-step "
+            f"{float(row['rank_cost_spread']):.2f}x; that rank is the slowest in "
+            f"{100 * float(row['rank_slowest_same']):.0f}% of the compute phases.")
+
+
 def coupled_share(row):
     """The consistent drag's coupled nodes on the rank with the most against the mean (the solve's
     work per rank), as a sentence; empty for runs without them (or from before they were counted)."""
@@ -155,7 +166,7 @@ def report(rows, machines, png):
                            f"{compute:.3g} s a rank on average (one rank's / {top}: {ideal:.3g} s, so "
                            f"{compute / ideal:.2f}x), its slowest rank per phase {compute_max / compute:.2f}x "
                            f"the mean; waiting in MPI {wait:.3g} s; balancing {balance:.3g} s; the rest of the "
-                           f"communication {comm:.3g} s." + coupled_share(row))
+                           f"communication {comm:.3g} s." + coupled_share(row) + rank_spreads(row))
             if hybrid:
                 out.append("")
                 out += hybrid_table(runs, hybrid, t1)

@@ -120,3 +120,28 @@ for d, ranks in ((one, 1), (two, second_ranks)):
         f"{d}/run.json: the step's phases add up to {total:.4f} s, the step took {step['mean_s']:.4f} s (> 5% apart)")
     assert ranks == 1 or phases.get("step/halo sum/wait", {}).get("max_s", 0) > 0, f"{d}/run.json: no halo wait"
     print(f"{ranks} rank(s): {len(parts)} step phases add up to {total:.4f} s of the step's {step['mean_s']:.4f} s")
+
+# run.json's per_rank block gives every rank's figures behind those statistics: per phase the
+# same seconds whose least, mean and largest "phases" reports (the same doubles: to their
+# round-off in the mean), and per rank the particle-steps, which add up over the ranks to the
+# one-rank run's: both runs take the same steps with the same particles (a particle that left
+# through the outlet a step apart on round-off would change one particle-step of millions).
+records = []
+for d in (one, two):
+    with open(os.path.join(d, "run.json")) as f:
+        records.append(json.load(f))
+for d, ranks, record in ((one, 1, records[0]), (two, second_ranks, records[1])):
+    per_rank, phases = record["per_rank"], record["phases"]
+    for name, seconds in per_rank["step_s"].items():
+        v = phases[f"step/{name}"]
+        close = lambda a, b: abs(a - b) <= 1e-12 + 1e-9 * abs(b)
+        assert len(seconds) == ranks and close(min(seconds), v["min_s"]) and close(max(seconds), v["max_s"]) and \
+            close(sum(seconds) / ranks, v["mean_s"]), f"{d}/run.json: per_rank step_s[{name}] = {seconds}, phases {v}"
+if records[0]["phases"]["step"]["calls"] == records[1]["phases"]["step"]["calls"]:
+    for k in ("water_particle_steps", "soil_particle_steps", "grid_block_steps"):
+        a, b = sum(records[0]["per_rank"][k]), sum(records[1]["per_rank"][k])
+        if k == "grid_block_steps":  # ghost blocks: the ranks' grids overlap
+            assert b >= a, f"{k}: {a} on one rank, {b} over {second_ranks}"
+        else:
+            assert abs(a - b) <= 1e-6 * a, f"{k}: {a} on one rank, {b} summed over {second_ranks}"
+    print(f"per rank: particle-steps add up to one rank's; grid blocks {sum(records[1]['per_rank']['grid_block_steps']) / sum(records[0]['per_rank']['grid_block_steps']):.3f}x one rank's (the ghosts)")

@@ -359,9 +359,9 @@ void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<D
       values[width + 2 * c] = -v;  // water row
       values[width + 2 * c + 1] = v + (gj == gi ? mw : 0.0);
     }
-    const std::array<PetscInt, 2> rows{static_cast<PetscInt>(2 * gi), static_cast<PetscInt>(2 * gi + 1)};
-    SUITE_PETSC_CHECK(
-        MatSetValues(matrix, 2, rows.data(), static_cast<PetscInt>(width), cols.data(), values.data(), ADD_VALUES));
+    const std::array<PetscInt, 2> node_rows{static_cast<PetscInt>(2 * gi), static_cast<PetscInt>(2 * gi + 1)};
+    SUITE_PETSC_CHECK(MatSetValues(matrix, 2, node_rows.data(), static_cast<PetscInt>(width), cols.data(),
+                                   values.data(), ADD_VALUES));
   }
   SUITE_PETSC_CHECK(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY));
   SUITE_PETSC_CHECK(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY));

@@ -1,6 +1,7 @@
 #include "solvers/mpm2grid/run/run_mpm.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -228,6 +229,8 @@ class MpmRun {
       p_.dt_cap = std::numeric_limits<double>::infinity();  // grown back to the limits
     const double to_event = std::min({p_.next_sample, p_.next_output, scene_.time.end}) - sim_.time();
     double dt = std::min(limit.dt, to_event);
+    particle_steps_[0] += static_cast<long long>(sim_.water().size());
+    particle_steps_[1] += static_cast<long long>(sim_.soil().size());
     {
       ScopedPhase phase(timers_, "step");
       for (;;) {
@@ -261,6 +264,7 @@ class MpmRun {
                                      "-drag_pc_type jacobi; the implicit forces' with -implicit_, e.g. "
                                      "-implicit_snes_rtol 1e-8)",
                                      fmt::join(unused, ", ")));
+    grid_block_steps_ += static_cast<long long>(sim_.grid().blocks());
     last_dt_ = dt;
     p_.smallest_dt = std::min(p_.smallest_dt, dt);
     checks.emplace(timers_, "blow-up check");
@@ -534,6 +538,37 @@ class MpmRun {
       }
     }
     if (const auto* dd = sim_.decomposition()) record_decomposition(*dd, sim_.steps() - first_step_);
+    record_per_rank();
+  }
+
+  // Every rank's particle-steps of each species and seconds in each step phase (and of those
+  // waiting in MPI): whether the slowest rank of a phase had more work, or took longer over the
+  // same work (its core), and whether it is the same rank in every phase. COLLECTIVE.
+  void record_per_rank() {
+    const StepTimes& t = sim_.step_times();
+    std::vector<double> mine{static_cast<double>(particle_steps_[0]), static_cast<double>(particle_steps_[1]),
+                             static_cast<double>(grid_block_steps_)};
+    mine.insert(mine.end(), t.seconds.begin(), t.seconds.end());
+    mine.insert(mine.end(), t.waited.begin(), t.waited.end());
+    const auto n = mine.size();
+    std::vector<double> all(n * static_cast<std::size_t>(comm_.size()));
+    SUITE_MPI_CHECK(MPI_Allgather(mine.data(), static_cast<int>(n), MPI_DOUBLE, all.data(), static_cast<int>(n),
+                                  MPI_DOUBLE, comm_.raw()));
+    const auto column = [&](std::size_t i) {
+      std::vector<double> v;
+      for (std::size_t r = 0; r < all.size(); r += n) v.push_back(all[r + i]);
+      return v;
+    };
+    auto& j = record_.extra()["per_rank"];
+    j["water_particle_steps"] = column(0);
+    j["soil_particle_steps"] = column(1);
+    j["grid_block_steps"] = column(2);
+    for (std::size_t k = 0; k < kStepPhases; ++k) {
+      const auto seconds = column(3 + k);
+      if (*std::max_element(seconds.begin(), seconds.end()) == 0) continue;  // a phase no rank ran
+      j["step_s"][kStepPhaseNames[k]] = seconds;
+      j["wait_s"][kStepPhaseNames[k]] = column(3 + kStepPhases + k);
+    }
   }
 
   // The decomposition's traffic in run.json: sums over the ranks per step of this run's steps (or
@@ -598,6 +633,8 @@ class MpmRun {
   std::optional<ParticleExtremes> extremes_;  // the last blow-up check's, while the particles stay as it saw them
   long long drag_iterations_ = 0;  // most KSP iterations of one consistent drag solve in this run
   long long drag_owned_nodes_ = 0;      // coupled nodes this rank owned, summed over this run's steps
+  std::array<long long, 2> particle_steps_{};  // water and soil particles at each step's start, summed
+  long long grid_block_steps_ = 0;             // blocks of this rank's grid (owned and ghost) after each step, summed
   long long first_step_ = 0;            // the step this run (or its restart) began at
   long long last_checkpoint_step_ = -1;  // the step of the newest checkpoint of this run
   RunProgress p_;
