@@ -22,6 +22,8 @@ struct State {
   std::vector<int> part;
   std::vector<Load> load;
   Load mean{0, 0};
+  Load limit{0, 0};   // the largest load over the mean to aim at, per species
+  Load accept{0, 0};  // and to accept
   std::array<bool, 2> balanced{false, false};
 
   double weight(std::size_t b, std::size_t s) const { return static_cast<double>(weights[b][s]); }
@@ -32,6 +34,14 @@ struct State {
       if (balanced[s])
         for (const Load& l : load) worst = std::max(worst, l[s] / mean[s]);
     return worst;
+  }
+  // Every balanced species within its limit (or `bound`).
+  bool within(const Load* bound = nullptr) const {
+    for (std::size_t s = 0; s < 2; ++s)
+      if (balanced[s])
+        for (const Load& l : load)
+          if (l[s] > (bound ? *bound : limit)[s] * mean[s]) return false;
+    return true;
   }
   // Block b's neighbours in part p.
   int edges_to(std::size_t b, int p) const {
@@ -206,8 +216,8 @@ bool diffusion_round(State& st, int parts) {
 }
 
 // Border blocks go to the part holding most of their neighbours when that cuts fewer edges and
-// keeps that part within `target` of the mean in every balanced species.
-void refine_cut(State& st, int parts, double target) {
+// keeps that part within its limit in every balanced species.
+void refine_cut(State& st, int parts) {
   const BlockGraph& g = st.graph;
   std::vector<int> count(static_cast<std::size_t>(parts), 0);
   for (int pass = 0; pass < 2; ++pass)
@@ -228,7 +238,7 @@ void refine_cut(State& st, int parts, double target) {
       bool fits = true;
       for (std::size_t s = 0; s < 2; ++s)
         if (st.balanced[s] && st.weight(b, s) > 0)
-          fits = fits && st.load[static_cast<std::size_t>(best)][s] + st.weight(b, s) <= target * st.mean[s];
+          fits = fits && st.load[static_cast<std::size_t>(best)][s] + st.weight(b, s) <= st.limit[s] * st.mean[s];
       if (fits) st.move(b, best);
     }
 }
@@ -236,7 +246,7 @@ void refine_cut(State& st, int parts, double target) {
 }  // namespace
 
 std::optional<Diffused> diffuse_partition(const BlockGraph& graph, const std::vector<std::array<long long, 2>>& weights,
-                                          const std::vector<int>& previous, int parts, double target) {
+                                          const std::vector<int>& previous, int parts, double target, double accept) {
   const std::size_t n = graph.size();
   if (weights.size() != n || previous.size() != n)
     throw LibraryError("diffuse_partition: one weight pair and one previous part per block expected");
@@ -272,16 +282,20 @@ std::optional<Diffused> diffuse_partition(const BlockGraph& graph, const std::ve
     for (const Load& l : st.load) total += l[s];
     st.mean[s] = total / static_cast<double>(parts);
     st.balanced[s] = total >= 64.0 * parts;
+    // Blocks move whole: half the largest block above the mean where that is more than the target.
+    double block = 0;
+    for (std::size_t b = 0; b < n; ++b) block = std::max(block, st.weight(b, s));
+    st.limit[s] = st.balanced[s] ? std::max(target, 1 + block / (2 * st.mean[s])) : 0;
+    st.accept[s] = std::max(st.limit[s], accept);
   }
   // Rounds until balanced: each carries most of the flow; the blocks' sizes leave a remainder.
   // A partition already within the target is left as it is.
-  const bool within = st.imbalance() <= target;
-  for (int round = 0; round < 8 && st.imbalance() > target; ++round)
+  const bool within = st.within();
+  for (int round = 0; round < 8 && !st.within(); ++round)
     if (!diffusion_round(st, parts)) return std::nullopt;
-  if (!within) refine_cut(st, parts, target);
-  const double imbalance = st.imbalance();
-  if (imbalance > target) return std::nullopt;
-  Diffused out{std::move(st.part), imbalance, 0};
+  if (!within) refine_cut(st, parts);
+  if (!st.within(&st.accept)) return std::nullopt;
+  Diffused out{std::move(st.part), st.imbalance(), 0};
   for (std::size_t b = 0; b < n; ++b) out.moved += previous[b] >= 0 && previous[b] != out.part[b];
   return out;
 }

@@ -29,11 +29,12 @@ struct Diffused {
 
 // `previous[i]`: block i's part (-1: none yet; such blocks join a neighbouring part first).
 // weights[i] = {soil, water} particles in block i. A species is balanced where it has at least
-// 64 particles a part (as the load check measures). Returns nothing when some species stays
-// above `target` times its mean after the rounds (a part without neighbours, or loads too
-// lumpy to move): the caller partitions afresh. Deterministic. Throws LibraryError on
-// inconsistent input (sizes, parts out of range).
+// 64 particles a part (as the load check measures), aiming at `target` times its mean or, where
+// its largest block is more than twice that margin, at half that block above the mean (blocks
+// move whole). Returns nothing when some species stays above `accept` (or that aim, if more)
+// after the rounds (a part without neighbours, loads too lumpy to move): the caller partitions
+// afresh. Deterministic. Throws LibraryError on inconsistent input (sizes, parts out of range).
 std::optional<Diffused> diffuse_partition(const BlockGraph& graph, const std::vector<std::array<long long, 2>>& weights,
-                                          const std::vector<int>& previous, int parts, double target);
+                                          const std::vector<int>& previous, int parts, double target, double accept);
 
 }  // namespace suite::mpm2grid

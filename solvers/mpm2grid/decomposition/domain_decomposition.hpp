@@ -12,9 +12,11 @@
 //   migrate()         after the particles moved: each goes to the rank owning its new home block.
 // balance() measures the load every `check_every` steps: the particle counts of each species per
 // rank (deterministic, unlike timings, so a restart repeats the same decisions bit for bit).
-// When the most loaded rank holds more than `imbalance` times the mean of a species, blocks on
-// the ranks' borders move between neighbouring ranks until every species is within a third of
-// that margin of its mean (diffuse_partition.hpp); where that fails (and for the first
+// When the most loaded rank holds more than `imbalance` times the mean of a species, and more
+// than the largest block of that species above it (no partition of whole blocks does much
+// better than one block), blocks on the ranks' borders move between neighbouring ranks until
+// every species is within a third of that margin of its mean, or half a block
+// (diffuse_partition.hpp); where that does not come within half the margin (and for the first
 // distribution, or with `repartition = fresh`) the blocks in use are partitioned afresh with
 // METIS (partition.hpp), each part kept on the rank that held most of its work. Then the
 // particles move to their new owners.
@@ -35,11 +37,12 @@ namespace suite::mpm2grid {
 
 struct DecompositionSettings {
   int check_every = 20;    // steps between load measurements
-  double imbalance = 1.1;  // rebalance above this ratio of the largest to the mean particle count
+  double imbalance = 1.05;  // rebalance above this ratio of the largest to the mean particle count
   bool diffuse = true;     // rebalance by moving border blocks (false: a fresh METIS partition)
-  // What a diffusive rebalance must reach: a third of the margin (1.033 for 1.1), at least
-  // METIS's 1%.
+  // What a diffusive rebalance aims at: a third of the margin (1.0167 for 1.05), at least
+  // METIS's 1%; and accepts: half the margin (a fresh partition moves most particles).
   double diffusion_target() const { return std::max(1.01, 1 + (imbalance - 1) / 3); }
+  double diffusion_accept() const { return std::max(diffusion_target(), 1 + (imbalance - 1) / 2); }
 };
 
 // What this rank did, summed since the run (or its restart) began.
@@ -119,6 +122,8 @@ class DomainDecomposition {
 
  private:
   Index<Dim> home(const Vec<Dim>& x) const;
+  // The most particles of P that one block is home to.
+  long long largest_block(const Particles<Dim>& P) const;
   // `first`: the first distribution (METIS, whatever the settings).
   void partition(const Particles<Dim>& water, const Particles<Dim>& soil, bool first);
 

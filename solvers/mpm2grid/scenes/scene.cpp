@@ -277,7 +277,7 @@ Scene<Dim> read_scene(const config::Config& cfg) {
   // Over several ranks: how often the load is measured, and the imbalance that repartitions.
   const auto dd = root.section_or_empty("decomposition");
   sim.decomposition.check_every = static_cast<int>(dd.integer("check_every", 20, 0, 1000000));
-  sim.decomposition.imbalance = dd.number("imbalance", 1.1, Range::at_least(1));
+  sim.decomposition.imbalance = dd.number("imbalance", 1.05, Range::at_least(1));
   sim.decomposition.diffuse = dd.choice("repartition", {"diffuse", "fresh"}, "diffuse") == "diffuse";
   sc.checkpoints = checkpoint::ScheduleSettings::read(root.section_or_empty("checkpoint"), {1000, 1800.0, 2});
   cfg.finish();
