@@ -2,9 +2,9 @@
 # Rebalancing by diffusion against a fresh METIS partition (decomposition.repartition: diffuse /
 # fresh; solvers/mpm2grid/decomposition/diffuse_partition.hpp), on Table 3.4 example 2 at h = H
 # from rest to END, on each rank count of RANKS (more ranks than cores: oversubscribed, so the
-# counts mean what they would on a cluster): rebalances, the particles
-# they moved, rank 0's time finding the new owners, the halo traffic per step (the parts'
-# shapes) and the particles per rank at the end. Then, diffusing at SWEEP_RANKS ranks, each
+# counts mean what they would on a cluster): rebalances, the particles they moved, rank 0's
+# time finding the new owners, the halo traffic per step (the parts' shapes) and the particles
+# per rank at the end. Then, diffusing at SWEEP_RANKS ranks, each
 # decomposition.imbalance of IMBALANCES: how far the most loaded rank's particle-steps of each
 # species stay above the mean over the run against what the rebalances cost. rebalance.py
 # tabulates.

@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "core/petsc/petsc_check.hpp"
+#include "solvers/mpm2grid/transfer/apic.hpp"
 
 namespace suite::mpm2grid {
 
@@ -272,10 +273,15 @@ void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<D
       if (const int f = grid.find_block(from); f >= 0) near[static_cast<std::size_t>(f)] = 1;
     }
   const double h = grid.spacing();
+  std::vector<int> found;
+  if (!groups) {
+    found.resize(soil.size());
+    find_groups(soil, grid, ParticleRun{0, soil.size()}, found);
+    groups = &found;
+  }
   std::vector<std::size_t> reaching;  // the soil particles that add terms, in their order
   for (std::size_t p = 0; p < soil.size(); ++p) {
-    const int group =
-        groups ? (*groups)[p] : grid.find_block(BlockGrid<Dim>::block_holding(stencil_base(soil.x[p], h)));
+    const int group = (*groups)[p];
     if (group >= 0 && near[static_cast<std::size_t>(group)]) reaching.push_back(p);
   }
   const auto row_of = [&](long slot) {
