@@ -20,7 +20,8 @@ largest kinetic energy in series.csv, dt_first / dt_last / dt_largest: the dt co
 outflow_discharge_max: the largest water discharge through the outlet in series.csv (m^2/s in 2D,
 sampled at the output interval; empty without an outlet), drag_coupled_nodes_rank_mean and _max:
 the consistent drag's coupled nodes per step owned by a rank, mean and most over the ranks (the
-solve's work per rank; empty without the consistent drag). From run.json's per_rank block (over
+assembly's work per rank; empty without the consistent drag), drag_solved_nodes_rank_max: the
+most whose rows a rank held in the Krylov solve (decomposition.drag_rows). From run.json's per_rank block (over
 several ranks; the compute phases' own seconds, waits taken off, summed per rank):
 rank_compute_spread, the most loaded rank's compute over the mean; rank_work_spread, the same of
 the particle-steps (water and soil); rank_cost_spread, of the compute per particle-step (a rank
@@ -45,7 +46,8 @@ COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "parti
            "drag_ksp_max_iterations", "outflow_water_volume", "eroded_soil_volume", "water_front", "end_time",
            "dt_first", "dt_last", "rss_max_kb", "rss_sum_kb", "kinetic_energy_max", "dt_largest",
            "halo_messages_per_step", "migration_messages_per_step", "outflow_discharge_max",
-           "drag_coupled_nodes_rank_mean", "drag_coupled_nodes_rank_max", "rank_compute_spread",
+           "drag_coupled_nodes_rank_mean", "drag_coupled_nodes_rank_max", "drag_solved_nodes_rank_max",
+           "rank_compute_spread",
            "rank_work_spread", "rank_cost_spread", "rank_slowest_same"]
 STEP_PHASES = ["balance", "grid", "halo plan", "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
                "boundary", "halo copy", "g2p water", "g2p soil", "outflow", "inlet", "migrate", "bed shear"]
@@ -157,6 +159,9 @@ def metrics(run, rss_dir=None):
         if coupled:
             m["drag_coupled_nodes_rank_mean"] = f"{coupled['mean']:.6g}"
             m["drag_coupled_nodes_rank_max"] = f"{coupled['max']:.6g}"
+        solved = r.get("drag_solved_nodes_per_rank", {})
+        if solved:
+            m["drag_solved_nodes_rank_max"] = f"{solved['max']:.6g}"
         m.update(per_rank_spreads(r.get("per_rank")))
         phases = r.get("phases", {})
         for p in STEP_PHASES + CHECKS:

@@ -44,7 +44,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 CASES = {"ex2": "Table 3.4 example 2, h = 0.025 m", "ex2fine": "example 2, h = 0.0125 m",
-         "ex2consistent": "example 2, h = 0.025 m, consistent drag", "3d": "two_species_3d, h = 5 mm"}
+         "ex2consistent": "example 2, h = 0.025 m, consistent drag",
+         "ex2balanced": "example 2, h = 0.025 m, consistent drag, the solve's rows in equal shares",
+         "ex2jacobi": "example 2, h = 0.025 m, consistent drag, point Jacobi (the preconditioner before SOR)",
+         "3d": "two_species_3d, h = 5 mm"}
+# A case run at the largest rank count only: its one-rank run is another case's (the same run).
+BASELINE = {"ex2balanced": "ex2consistent"}
 RUN = re.compile(r"^(?P<case>[a-z0-9]+)-r(?P<ranks>\d+)(t(?P<threads>\d+))?(-(?P<mode>equal|measured))?-(?P<repeat>\d+)$")
 COPY = re.compile(r"^(?P<case>[a-z0-9]+)-copy(?P<copy>\d+)$")
 HEAD = ["lease", "case", "kind", "mode", "repeat", "copy", "threads"] + COLUMNS
@@ -67,8 +72,11 @@ def coupled_share(row):
     mean, most = row.get("drag_coupled_nodes_rank_mean"), row.get("drag_coupled_nodes_rank_max")
     if not mean or not most or float(mean) == 0:
         return ""
+    solved = row.get("drag_solved_nodes_rank_max")
+    rows = (f"; the solve's rows of {float(solved):.0f} on the busiest rank there"
+            if solved and float(solved) != float(most) else "")
     return (f" The drag solve's coupled nodes: {float(most):.0f} on the busiest rank against {float(mean):.0f} "
-            f"on average ({float(most) / float(mean):.1f}x).")
+            f"on average ({float(most) / float(mean):.1f}x){rows}.")
 
 
 def collect(label, runs_dir):
@@ -107,9 +115,12 @@ def report(rows, machines, png):
                     and r["status"] == "completed" and r.get("threads", "1") in ("", "1")]
             hybrid = [r for r in mine if r["case"] == case and r["kind"] == "run" and r["mode"] == "equal"
                       and r["status"] == "completed" and r.get("threads", "1") not in ("", "1")]
-            ones = {r["repeat"]: num(r, "step_s") for r in runs if r["ranks"] == "1"}
+            base = [r for r in mine if r["case"] == BASELINE.get(case, case) and r["kind"] == "run"
+                    and r["mode"] == "equal" and r["status"] == "completed" and r.get("threads", "1") in ("", "1")]
+            ones = {r["repeat"]: num(r, "step_s") for r in base if r["ranks"] == "1"}
             if not ones:
                 continue
+            runs = [r for r in base if r["ranks"] == "1"] + [r for r in runs if r["ranks"] != "1"]
             t1 = min(ones.values())
             steps = statistics.median(num(r, "steps") for r in runs)
             particles = statistics.median(num(r, "particles_mean") for r in runs)

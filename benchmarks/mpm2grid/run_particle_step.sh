@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # ns per particle-step per core of the full two-species step (P2G of both species, the drag-coupled
 # grid solve, walls, G2P with the soil's return mapping), 2D and 3D, lumped drag against the
-# consistent PETSc drag (CG + Jacobi), on one rank. Scenes: two_species_2d.yaml (160,000
-# particles at h = 2.5 mm) and two_species_3d.yaml (42,240 at h = 1 cm), a water column on a soil
-# bed. Each run stops after STEPS steps (time.max_steps); the time is run.json's step phase (no
-# seeding, output or checkpoint), over steps x particles. The four configurations are run in turn,
+# consistent PETSc drag (CG and its default preconditioner: SOR since 2026-11-28, Jacobi before),
+# on one rank. Scenes: two_species_2d.yaml (160,000 particles at h = 2.5 mm) and
+# two_species_3d.yaml (42,240 at h = 1 cm), a water column on a soil bed. Each run stops after
+# STEPS steps (time.max_steps); the time is run.json's step phase (no seeding, output or
+# checkpoint), over steps x particles. The four configurations are run in turn,
 # REPEATS times (interleaved, so that a load change hits all alike); medians and the
 # consistent/lumped ratio of each repeat's pair go to particle_step.md.
 #   benchmarks/mpm2grid/run_particle_step.sh [MPM2GRID]      (about 3 min on 2 idle cores)

@@ -22,6 +22,7 @@ import glob
 import json
 import math
 import os
+import re
 import sys
 
 import h5py
@@ -76,23 +77,35 @@ if second_ranks > 1:
     print(f"2 ranks: particles per rank {dd['particles_per_rank']}, halo {dd['halo_bytes_per_step']:.0f} bytes/step, "
           f"{dd['migrated_particles_per_step']:.2f} particles migrated/step, {dd['rebalances']} rebalances")
 
-# With the consistent drag, run.json's coupled nodes per rank (the solve's rows) add up over the
-# ranks to the one-rank run's: every coupled node has exactly one owner. The same nodes are coupled
-# on both runs (both species' masses on a node, which round-off cannot bring to zero), so the sums
-# per step, averaged over the same steps, agree to the averages' round-off.
-coupled = []
+# With the consistent drag, run.json's coupled nodes per rank (the rows each owner assembles) and
+# solved nodes per rank (the rows each holds in the Krylov solve) each add up over the ranks to
+# the one-rank run's: every coupled node has exactly one owner and one place in the solve. The same
+# nodes are coupled on both runs (both species' masses on a node, which round-off cannot bring to
+# zero), so the sums per step, averaged over the same steps, agree to the averages' round-off.
+# With the solve's rows in equal shares (decomposition.drag_rows: balanced) the shares of a step
+# differ by at most one node, so their averages do too; with the owners' rows (the default) the
+# solved nodes are the coupled ones.
+counts = []
 for d in (one, two):
     with open(os.path.join(d, "run.json")) as f:
-        coupled.append(json.load(f).get("drag_coupled_nodes_per_rank"))
-if coupled[0] is not None:
-    (c1, c2) = coupled
-    assert c1["min"] == c1["mean"] == c1["max"], f"{one}/run.json: one rank, yet coupled nodes {c1}"
-    assert c2["min"] <= c2["mean"] <= c2["max"], f"{two}/run.json: coupled nodes {c2}"
-    total = c2["mean"] * second_ranks
-    assert c1["mean"] > 0 and abs(total - c1["mean"]) <= 1e-9 * c1["mean"], (
-        f"coupled nodes per step: {c1['mean']} on one rank, {total} summed over {second_ranks}")
-    print(f"coupled nodes per step: {c1['mean']:.1f} on one rank; on {second_ranks}: {c2['min']:.1f} to "
-          f"{c2['max']:.1f} a rank, {total:.1f} in all")
+        r = json.load(f)
+    with open(os.path.join(d, "effective_config.yaml")) as f:
+        balanced = re.search(r"^\s*drag_rows:\s*balanced\s*$", f.read(), re.M) is not None
+    counts.append((r.get("drag_coupled_nodes_per_rank"), r.get("drag_solved_nodes_per_rank"), balanced))
+if counts[0][0] is not None:
+    for key, (c1, c2) in (("coupled", (counts[0][0], counts[1][0])), ("solved", (counts[0][1], counts[1][1]))):
+        assert c1["min"] == c1["mean"] == c1["max"], f"{one}/run.json: one rank, yet {key} nodes {c1}"
+        assert c2["min"] <= c2["mean"] <= c2["max"], f"{two}/run.json: {key} nodes {c2}"
+        total = c2["mean"] * second_ranks
+        assert c1["mean"] > 0 and abs(total - c1["mean"]) <= 1e-9 * c1["mean"], (
+            f"{key} nodes per step: {c1['mean']} on one rank, {total} summed over {second_ranks}")
+        print(f"{key} nodes per step: {c1['mean']:.1f} on one rank; on {second_ranks}: {c2['min']:.1f} to "
+              f"{c2['max']:.1f} a rank, {total:.1f} in all")
+    (coupled, solved, balanced) = counts[1]
+    if balanced:
+        assert solved["max"] - solved["min"] <= 1 + 1e-9, f"{two}/run.json: the solve's shares differ: {solved}"
+    else:
+        assert solved == coupled, f"{two}/run.json: the owners' rows, yet solved nodes {solved}, coupled {coupled}"
 
 # The step's breakdown in run.json (solvers/mpm2grid/model/step_timers.hpp) accounts for the step:
 # its phases are disjoint and cover Simulation::step() but for a few assignments, so per rank

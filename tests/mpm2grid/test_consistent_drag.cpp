@@ -9,7 +9,8 @@
 //   c. with co-located species, a uniform relative velocity and m_s,i / d_i, m_w,i / d_i the same
 //      on every node, it gives the lumped closed form's velocities (the row sums of D are d_i);
 //   d. split over the ranks (half of the soil particles' drag terms and half of the coupled nodes
-//      per rank, the grid replicated) it gives the 1-rank solution on each rank's nodes;
+//      per rank, or three quarters of the nodes on rank 0; the grid replicated) it gives the
+//      1-rank solution on each rank's nodes, with the Krylov rows in equal shares or the owners';
 //   e. a Krylov solve that stops early is an error that names the options prefix and the reason;
 //   f. a whole model step with the consistent drag relaxes as the closed form;
 // and NodeNumbering::own_all gives each rank's coupled nodes a disjoint range, in rank order.
@@ -362,11 +363,14 @@ TYPED_TEST(ConsistentDragTest, UniformRelativeVelocityGivesTheLumpedSolution) {
 
 // d. On the test's ranks: every rank holds the whole grid and node fields, but only every
 // size-th soil particle's drag terms and a contiguous share of the coupled nodes, numbered in
-// slot order. Each rank's owned and uncoupled nodes must get the 1-rank solution (computed on
-// MPI_COMM_SELF) and the dense one, within a's bound (the sums over ranks only change the order
-// of additions; measured: below 1e-13); the other ranks' nodes stay as they were.
-TYPED_TEST(ConsistentDragTest, SplitOverRanksGivesTheOneRankSolution) {
-  constexpr int Dim = TypeParam::value;
+// slot order: equal shares, or (lopsided) rank 0 owning three quarters of them and the other ranks
+// the rest in equal shares. Each rank's owned and uncoupled nodes must get the 1-rank solution
+// (computed on MPI_COMM_SELF) and the dense one, within a's bound (the sums over ranks only change
+// the order of additions; measured: below 1e-13); the other ranks' nodes stay as they were. The
+// Krylov solve holds equal shares of the rows with DragRows::balanced whatever the owners hold,
+// the owners' with DragRows::owners.
+template <int Dim>
+void expect_split_solve_is_the_one_rank_solve(bool lopsided, DragRows rows) {
   const mpi::Comm& comm = environment->comm();
   const mpi::Comm self(MPI_COMM_SELF);
   Scene<Dim> s = irregular_scene<Dim>(5);
@@ -393,15 +397,24 @@ TYPED_TEST(ConsistentDragTest, SplitOverRanksGivesTheOneRankSolution) {
   long coupled = 0;
   for (std::size_t i = 0; i < s.grid.nodes(); ++i)
     if (drag_coupled(s.soil_nodes.mass[i], s.water_nodes.mass[i])) numbering.global[i] = coupled++;
-  numbering.first = coupled * comm.rank() / comm.size();
-  numbering.owned = coupled * (comm.rank() + 1) / comm.size() - numbering.first;
+  // Rank r owns nodes start(r) .. start(r + 1) - 1.
+  const auto start = [&](long r) {
+    if (!lopsided || r == 0 || r == comm.size()) return coupled * r / comm.size();
+    const long first = 3 * coupled / 4;
+    return first + (coupled - first) * (r - 1) / (comm.size() - 1);
+  };
+  numbering.first = start(comm.rank());
+  numbering.owned = start(comm.rank() + 1) - numbering.first;
 
   const Vec<Dim> untouched = Vec<Dim>::Constant(12345.0);
   std::fill(s.soil_nodes.velocity.begin(), s.soil_nodes.velocity.end(), untouched);
   std::fill(s.water_nodes.velocity.begin(), s.water_nodes.velocity.end(), untouched);
-  ConsistentDrag<Dim> split(comm);
+  ConsistentDrag<Dim> split(comm, "drag_", rows);
   const SolveStats stats = split.solve(s.grid, mine, my_drag, s.soil_nodes, s.water_nodes, dt, numbering);
   EXPECT_EQ(stats.unknowns, 2 * coupled);
+  EXPECT_EQ(stats.owned_nodes, numbering.owned);
+  const long equal_share = coupled * (comm.rank() + 1) / comm.size() - coupled * comm.rank() / comm.size();
+  EXPECT_EQ(stats.solved_nodes, rows == DragRows::balanced ? equal_share : numbering.owned);
   const Velocities<Dim> mine_v = velocities(s);
 
   const auto computed_here = [&](std::size_t i) {
@@ -417,6 +430,16 @@ TYPED_TEST(ConsistentDragTest, SplitOverRanksGivesTheOneRankSolution) {
       EXPECT_EQ(mine_v.water[i], untouched) << "slot " << i;
     }
   EXPECT_EQ(comm.sum(static_cast<long long>(numbering.owned)), static_cast<long long>(coupled));
+}
+
+TYPED_TEST(ConsistentDragTest, SplitOverRanksGivesTheOneRankSolution) {
+  expect_split_solve_is_the_one_rank_solve<TypeParam::value>(false, DragRows::balanced);
+  expect_split_solve_is_the_one_rank_solve<TypeParam::value>(false, DragRows::owners);
+}
+
+TYPED_TEST(ConsistentDragTest, LopsidedOwnersStillGiveTheOneRankSolution) {
+  expect_split_solve_is_the_one_rank_solve<TypeParam::value>(true, DragRows::balanced);
+  expect_split_solve_is_the_one_rank_solve<TypeParam::value>(true, DragRows::owners);
 }
 
 // d'. own_all on the test's ranks: each rank's coupled nodes get a disjoint range, in rank order.

@@ -14,13 +14,46 @@
 
 namespace suite::mpm2grid {
 
+// The two layouts of the global node numbering, as starts per rank (ranks + 1 entries, rank r
+// holds nodes starts[r] .. starts[r + 1] - 1): where the owners hold the nodes (their right-hand
+// sides and velocities: NodeNumbering's first and owned) and where the Krylov solve holds their
+// rows. `same` when the two coincide (one rank, DragRows::owners, or equal shares by chance).
+template <int Dim>
+struct ConsistentDrag<Dim>::Layouts {
+  std::vector<long> owners, solve;
+  bool same = true;
+
+  Layouts(const std::vector<long long>& owned, DragRows rows) : owners(owned.size() + 1, 0) {
+    for (std::size_t r = 0; r < owned.size(); ++r) owners[r + 1] = owners[r] + static_cast<long>(owned[r]);
+    if (rows == DragRows::owners) {
+      solve = owners;
+    } else {
+      const long ranks = static_cast<long>(owned.size());
+      solve.resize(owners.size());
+      for (long r = 0; r <= ranks; ++r) solve[static_cast<std::size_t>(r)] = total() * r / ranks;
+    }
+    same = solve == owners;
+  }
+  long total() const { return owners.back(); }
+  long solve_count(int rank) const {
+    return solve[static_cast<std::size_t>(rank) + 1] - solve[static_cast<std::size_t>(rank)];
+  }
+  // The first and one past the last node of the solve's share holding node g.
+  std::pair<long, long> solve_share(long g) const {
+    const auto after = std::upper_bound(solve.begin(), solve.end(), g);  // solve[0] = 0 <= g < total
+    return {*(after - 1), *after};
+  }
+};
+
 // The PETSc objects. Mat and Vec are PETSc's here (::), not mpm2grid's Eigen templates.
 template <int Dim>
 struct ConsistentDrag<Dim>::Petsc {
   KSP ksp = nullptr;
   ::Mat matrix = nullptr;
-  ::Vec rhs = nullptr, solution = nullptr;
-  PetscInt local_rows = -1;  // this rank's rows in the last solve
+  ::Vec rhs = nullptr, solution = nullptr;  // the solve's layout
+  ::Vec owner_side = nullptr;               // the owners' layout, where it differs
+  VecScatter scatter = nullptr;             // owner_side -> the solve's layout (forward)
+  std::vector<long> owners;                 // the owners' starts of the last solve (empty: none yet)
 
   Petsc() = default;
   Petsc(const Petsc&) = delete;
@@ -28,6 +61,8 @@ struct ConsistentDrag<Dim>::Petsc {
   ~Petsc() {
     // Return codes ignored: a destructor cannot throw, and these only release memory.
     MatDestroy(&matrix);
+    VecScatterDestroy(&scatter);
+    VecDestroy(&owner_side);
     VecDestroy(&rhs);
     VecDestroy(&solution);
     KSPDestroy(&ksp);
@@ -118,34 +153,40 @@ class Windows {
                                                       // neighbour block, or -1
 };
 
-// Upper bounds of the nonzero 2 x 2 blocks per owned node (block row), split as PETSc's
-// preallocation wants them: column nodes this rank owns (d_nnz) and column nodes other ranks own
-// (o_nnz): the coupled nodes in the node's window (the node itself included, for the mass).
-// Window nodes outside this rank's grid may be coupled nodes of another rank when there are
-// several ranks; they count towards o_nnz, at most `other_nodes` (the other ranks' nodes).
-template <int Dim>
+// Upper bounds of the nonzero 2 x 2 blocks per owned node (block row, in global order), split as
+// PETSc's preallocation wants them for the rank that holds the row in the solve: column nodes in
+// that rank's share (d_nnz) and the others (o_nnz): the coupled nodes in the node's window (the
+// node itself included, for the mass). Window nodes outside this rank's grid may be coupled nodes
+// of another rank when there are several ranks; they count towards o_nnz, and towards d_nnz too
+// where the solve's shares are not the owners' (such a node may then lie in the row's share).
+template <int Dim, class Layouts>
 void count_nonzeros(const Windows<Dim>& windows, const NodeNumbering& numbering, const std::vector<long>& owned_slots,
-                    bool several_ranks, long other_nodes, std::vector<PetscInt>& d_nnz, std::vector<PetscInt>& o_nnz) {
+                    const Layouts& layouts, std::vector<PetscInt>& d_nnz, std::vector<PetscInt>& o_nnz) {
   d_nnz.assign(owned_slots.size(), 0);
   o_nnz.assign(owned_slots.size(), 0);
+  const bool several_ranks = layouts.owners.size() > 2;
   std::array<long, Windows<Dim>::kSize> window;
   for (std::size_t k = 0; k < owned_slots.size(); ++k) {
+    const auto [lo, hi] = layouts.solve_share(numbering.first + static_cast<long>(k));
     windows.slots(owned_slots[k], window);
     long own = 0, other = 0;
     for (const long slot : window) {
       if (slot < 0) {
-        if (several_ranks) ++other;
+        if (several_ranks) {
+          ++other;
+          if (!layouts.same) ++own;
+        }
         continue;
       }
       const long g = numbering.global[static_cast<std::size_t>(slot)];
       if (g < 0) continue;
-      if (numbering.owns(g))
+      if (g >= lo && g < hi)
         ++own;
       else
         ++other;
     }
-    d_nnz[k] = static_cast<PetscInt>(own);
-    o_nnz[k] = static_cast<PetscInt>(std::min(other, other_nodes));
+    d_nnz[k] = static_cast<PetscInt>(std::min(own, hi - lo));
+    o_nnz[k] = static_cast<PetscInt>(std::min(other, layouts.total() - (hi - lo)));
   }
 }
 
@@ -206,8 +247,8 @@ NodeNumbering NodeNumbering::own_blocks(const mpi::Comm& comm, const NodeFields<
 }
 
 template <int Dim>
-ConsistentDrag<Dim>::ConsistentDrag(const mpi::Comm& comm, const std::string& prefix)
-    : comm_(comm), prefix_(prefix), petsc_(std::make_unique<Petsc>()) {
+ConsistentDrag<Dim>::ConsistentDrag(const mpi::Comm& comm, const std::string& prefix, DragRows rows)
+    : comm_(comm), prefix_(prefix), rows_(rows), petsc_(std::make_unique<Petsc>()) {
   // Should a call below throw, petsc_ (a constructed member) still frees the KSP.
   KSP& ksp = petsc_->ksp;
   SUITE_PETSC_CHECK(KSPCreate(comm_.raw(), &ksp));
@@ -215,7 +256,7 @@ ConsistentDrag<Dim>::ConsistentDrag(const mpi::Comm& comm, const std::string& pr
   SUITE_PETSC_CHECK(KSPSetType(ksp, KSPCG));
   PC pc;
   SUITE_PETSC_CHECK(KSPGetPC(ksp, &pc));
-  SUITE_PETSC_CHECK(PCSetType(pc, PCJACOBI));
+  SUITE_PETSC_CHECK(PCSetType(pc, PCSOR));  // symmetric Gauss-Seidel on each rank's rows
   SUITE_PETSC_CHECK(KSPSetTolerances(ksp, 1e-12, 1e-50, PETSC_DEFAULT, PETSC_DEFAULT));
   SUITE_PETSC_CHECK(KSPSetFromOptions(ksp));
   // CG measures the preconditioned residual by default; the unpreconditioned one makes rtol a
@@ -232,19 +273,75 @@ ConsistentDrag<Dim>::ConsistentDrag(const mpi::Comm& comm, const std::string& pr
 template <int Dim>
 ConsistentDrag<Dim>::~ConsistentDrag() = default;
 
+// The vectors of both layouts and the scatter between them, for this call's counts: kept while
+// every rank's owned count is the same as at the last call (then so are both layouts), rebuilt
+// otherwise, with the KSP's work vectors and preconditioner. Every rank decides alike (the
+// counts are the same on all).
+template <int Dim>
+void ConsistentDrag<Dim>::prepare_vectors(const Layouts& layouts) {
+  Petsc& p = *petsc_;
+  if (layouts.owners == p.owners) return;
+  SUITE_PETSC_CHECK(KSPReset(p.ksp));
+  SUITE_PETSC_CHECK(VecScatterDestroy(&p.scatter));
+  SUITE_PETSC_CHECK(VecDestroy(&p.owner_side));
+  SUITE_PETSC_CHECK(VecDestroy(&p.rhs));
+  SUITE_PETSC_CHECK(VecDestroy(&p.solution));
+  const auto global = static_cast<PetscInt>(2 * layouts.total());
+  const auto create = [&](long nodes, ::Vec& v) {
+    SUITE_PETSC_CHECK(VecCreate(comm_.raw(), &v));
+    SUITE_PETSC_CHECK(VecSetSizes(v, static_cast<PetscInt>(2 * nodes), global));
+    SUITE_PETSC_CHECK(VecSetBlockSize(v, 2));
+    SUITE_PETSC_CHECK(VecSetType(v, VECSTANDARD));
+  };
+  create(layouts.solve_count(comm_.rank()), p.rhs);
+  SUITE_PETSC_CHECK(VecDuplicate(p.rhs, &p.solution));
+  if (!layouts.same) {
+    const auto r = static_cast<std::size_t>(comm_.rank());
+    const long first = layouts.owners[r], owned = layouts.owners[r + 1] - first;
+    create(owned, p.owner_side);
+    // Each rank sends its owned nodes' entries to the same global places in the solve's layout.
+    IS mine = nullptr;
+    SUITE_PETSC_CHECK(
+        ISCreateStride(PETSC_COMM_SELF, static_cast<PetscInt>(2 * owned), static_cast<PetscInt>(2 * first), 1, &mine));
+    const PetscErrorCode created = VecScatterCreate(p.owner_side, mine, p.rhs, mine, &p.scatter);
+    ISDestroy(&mine);
+    SUITE_PETSC_CHECK(created);
+  }
+  p.owners = layouts.owners;
+}
+
 template <int Dim>
 void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil,
                                    const std::vector<double>& soil_drag, const NodeFields<Dim>& soil_nodes,
                                    const NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering,
-                                   const std::vector<long>& owned_slots, long total, const std::vector<int>* groups) {
+                                   const std::vector<long>& owned_slots, const Layouts& layouts,
+                                   const std::vector<int>* groups) {
   constexpr int kNodes = BlockGrid<Dim>::kNodes, kWindow = Windows<Dim>::kSize;
-  ::Mat& matrix = petsc_->matrix;
-  const auto local_rows = static_cast<PetscInt>(2 * numbering.owned);
-  const auto global_rows = static_cast<PetscInt>(2 * total);
+  Petsc& ps = *petsc_;
+  ::Mat& matrix = ps.matrix;
+  const auto local_rows = static_cast<PetscInt>(2 * layouts.solve_count(comm_.rank()));
+  const auto global_rows = static_cast<PetscInt>(2 * layouts.total());
   const CoupledBlocks coupled = coupled_blocks(grid, numbering);
   const Windows<Dim> windows(grid, coupled);
   std::vector<PetscInt> d_nnz, o_nnz;
-  count_nonzeros(windows, numbering, owned_slots, comm_.size() > 1, total - numbering.owned, d_nnz, o_nnz);
+  count_nonzeros(windows, numbering, owned_slots, layouts, d_nnz, o_nnz);
+  if (!layouts.same) {
+    // The owners counted their nodes' rows; the solve's layout holds them: the counts travel the
+    // way the right-hand sides do (exact as doubles).
+    PetscScalar* v = nullptr;
+    SUITE_PETSC_CHECK(VecGetArray(ps.owner_side, &v));
+    for (std::size_t k = 0; k < d_nnz.size(); ++k) v[2 * k] = d_nnz[k], v[2 * k + 1] = o_nnz[k];
+    SUITE_PETSC_CHECK(VecRestoreArray(ps.owner_side, &v));
+    SUITE_PETSC_CHECK(VecScatterBegin(ps.scatter, ps.owner_side, ps.rhs, INSERT_VALUES, SCATTER_FORWARD));
+    SUITE_PETSC_CHECK(VecScatterEnd(ps.scatter, ps.owner_side, ps.rhs, INSERT_VALUES, SCATTER_FORWARD));
+    const PetscScalar* counts = nullptr;
+    SUITE_PETSC_CHECK(VecGetArrayRead(ps.rhs, &counts));
+    d_nnz.resize(static_cast<std::size_t>(local_rows / 2));
+    o_nnz.resize(d_nnz.size());
+    for (std::size_t k = 0; k < d_nnz.size(); ++k)
+      d_nnz[k] = static_cast<PetscInt>(counts[2 * k]), o_nnz[k] = static_cast<PetscInt>(counts[2 * k + 1]);
+    SUITE_PETSC_CHECK(VecRestoreArrayRead(ps.rhs, &counts));
+  }
 
   SUITE_PETSC_CHECK(MatDestroy(&matrix));
   // AIJ with block size 2 (a node's soil and water rows): -drag_pc_type pbjacobi then inverts
@@ -385,8 +482,12 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
   // collectives whatever it finds, and a problem on any rank stops every rank here rather than
   // leaving the others waiting inside PETSc.
   const long owned = numbering.owned;
-  const auto lower = static_cast<long>(comm_.exclusive_prefix_sum(static_cast<long long>(owned)));
-  const auto total = static_cast<long>(comm_.sum(static_cast<long long>(owned)));
+  const std::vector<long long> counts = comm_.all_gather(static_cast<long long>(owned));
+  long long lower = 0, total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    if (static_cast<int>(r) < comm_.rank()) lower += counts[r];
+    total += counts[r];
+  }
   std::string problem;
   const auto sized = [&](const NodeFields<Dim>& f) {
     return f.mass.size() == nodes && f.momentum.size() == nodes && f.force.size() == nodes &&
@@ -434,35 +535,34 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
     water_nodes.velocity[slot] = node_local_velocity(water_nodes, slot, dt);
   }
 
-  assemble(grid, soil, soil_drag, soil_nodes, water_nodes, dt, numbering, owned_slots, total, groups);
-  KSP ksp = petsc_->ksp;
-  ::Mat matrix = petsc_->matrix;
-  ::Vec& rhs = petsc_->rhs;
-  ::Vec& solution = petsc_->solution;
-  const auto local_rows = static_cast<PetscInt>(2 * numbering.owned);
-  if (comm_.any(local_rows != petsc_->local_rows)) {
-    // New sizes: the KSP's work vectors and the preconditioner are rebuilt for them.
-    SUITE_PETSC_CHECK(KSPReset(ksp));
-    SUITE_PETSC_CHECK(VecDestroy(&rhs));
-    SUITE_PETSC_CHECK(VecDestroy(&solution));
-    SUITE_PETSC_CHECK(MatCreateVecs(matrix, &solution, &rhs));
-    petsc_->local_rows = local_rows;
-  }
-  SUITE_PETSC_CHECK(KSPSetOperators(ksp, matrix, matrix));
+  const Layouts layouts(counts, rows_);
+  prepare_vectors(layouts);
+  assemble(grid, soil, soil_drag, soil_nodes, water_nodes, dt, numbering, owned_slots, layouts, groups);
+  Petsc& p = *petsc_;
+  SUITE_PETSC_CHECK(KSPSetOperators(p.ksp, p.matrix, p.matrix));
 
   SolveStats stats;
-  stats.unknowns = 2 * total;
+  stats.unknowns = 2 * layouts.total();
   stats.owned_nodes = owned;
+  stats.solved_nodes = layouts.solve_count(comm_.rank());
+  // The owners' right-hand sides and velocities: in the solve's vectors where the layouts agree,
+  // else in owner_side, scattered to and from the solve's layout.
+  ::Vec at_owners = layouts.same ? p.rhs : p.owner_side;
   for (int d = 0; d < Dim; ++d) {
     PetscScalar* b = nullptr;
-    SUITE_PETSC_CHECK(VecGetArray(rhs, &b));
+    SUITE_PETSC_CHECK(VecGetArray(at_owners, &b));
     for (std::size_t k = 0; k < owned_slots.size(); ++k) {
       const auto slot = static_cast<std::size_t>(owned_slots[k]);
       b[2 * k] = soil_nodes.momentum[slot][d] + dt * soil_nodes.force[slot][d];
       b[2 * k + 1] = water_nodes.momentum[slot][d] + dt * water_nodes.force[slot][d];
     }
-    SUITE_PETSC_CHECK(VecRestoreArray(rhs, &b));
-    SUITE_PETSC_CHECK(KSPSolve(ksp, rhs, solution));
+    SUITE_PETSC_CHECK(VecRestoreArray(at_owners, &b));
+    if (!layouts.same) {
+      SUITE_PETSC_CHECK(VecScatterBegin(p.scatter, p.owner_side, p.rhs, INSERT_VALUES, SCATTER_FORWARD));
+      SUITE_PETSC_CHECK(VecScatterEnd(p.scatter, p.owner_side, p.rhs, INSERT_VALUES, SCATTER_FORWARD));
+    }
+    KSP ksp = p.ksp;
+    SUITE_PETSC_CHECK(KSPSolve(ksp, p.rhs, p.solution));
     KSPConvergedReason reason;
     PetscInt iterations = 0;
     PetscReal residual = 0;
@@ -480,14 +580,19 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
       stats.reason_name = KSPConvergedReasons[reason];
     }
     stats.residual_norm = std::max(stats.residual_norm, static_cast<double>(residual));
+    if (!layouts.same) {
+      SUITE_PETSC_CHECK(VecScatterBegin(p.scatter, p.solution, p.owner_side, INSERT_VALUES, SCATTER_REVERSE));
+      SUITE_PETSC_CHECK(VecScatterEnd(p.scatter, p.solution, p.owner_side, INSERT_VALUES, SCATTER_REVERSE));
+    }
+    ::Vec solved = layouts.same ? p.solution : p.owner_side;
     const PetscScalar* x = nullptr;
-    SUITE_PETSC_CHECK(VecGetArrayRead(solution, &x));
+    SUITE_PETSC_CHECK(VecGetArrayRead(solved, &x));
     for (std::size_t k = 0; k < owned_slots.size(); ++k) {
       const auto slot = static_cast<std::size_t>(owned_slots[k]);
       soil_nodes.velocity[slot][d] = x[2 * k];
       water_nodes.velocity[slot][d] = x[2 * k + 1];
     }
-    SUITE_PETSC_CHECK(VecRestoreArrayRead(solution, &x));
+    SUITE_PETSC_CHECK(VecRestoreArrayRead(solved, &x));
   }
   return stats;
 }

@@ -23,16 +23,36 @@
 // per axis (two overlapping 4-wide stencils).
 // One matrix serves the Dim components: it is assembled once per call and solved for Dim
 // right-hand sides. Each rank adds its own soil particles' drag terms; entries for rows another
-// rank owns travel through PETSc's assembly (no rank ever holds the global vector).
+// rank holds travel through PETSc's assembly (no rank ever holds the global vector).
+//
+// Which rank holds a row in the solve (DragRows): the coupled nodes gather where the water meets
+// the soil, in few of the particles' parts (over the first 60 steps of example 2 at h = 0.025 m
+// on 16 ranks one rank owns 507 of the 1,019), and every rank waits for the busiest at each
+// Krylov iteration's reductions. `owners` (the default) solves each row on the node's owner (no
+// traffic beyond the solve's own). `balanced` gives each rank an equal contiguous share of the
+// global numbering, whoever owns the nodes: the owners still assemble their nodes' rows (those
+// for another rank travel through PETSc's assembly) and hold their right-hand sides and
+// velocities, which reach the solve's layout and come back by one VecScatter. On 2 ranks, where
+// one owns every coupled node, the shipped rows cost more than the halved solve saved
+// (docs/mpm2grid.md, "Benchmarks"); at 16 ranks it is unmeasured. The global numbering and so the
+// matrix are the same in both; the Krylov iterations differ by round-off (the reductions' order
+// follows the layout), and their number with a preconditioner that works on each rank's rows.
 //
 // PETSc: a ConsistentDrag must be created and destroyed inside a suite::PetscSession (it owns a
-// KSP, freed in the destructor, which must run before PetscFinalize). Defaults: KSPCG, PCJACOBI,
-// rtol 1e-12 on the unpreconditioned residual norm (so ||b - A v|| <= rtol ||b||, which bounds the
-// momentum error), atol 1e-50, zero initial guess; the options database overrides them through
-// the prefix, e.g. -drag_ksp_type, -drag_pc_type, -drag_ksp_rtol, -drag_ksp_max_it. The matrix
-// has block size 2, so -drag_pc_type pbjacobi inverts each node's 2 x 2 block; for dt far above
-// the drag relaxation time it needs fewer CG iterations than Jacobi (docs/mpm2grid.md,
-// "Benchmarks").
+// KSP, freed in the destructor, which must run before PetscFinalize). Defaults: KSPCG, PCSOR
+// (PETSc's default sweep: one symmetric Gauss-Seidel sweep over each rank's rows, an SPD
+// preconditioner for any SPD matrix), rtol 1e-12 on the unpreconditioned residual norm (so
+// ||b - A v|| <= rtol ||b||, which bounds the momentum error), atol 1e-50, zero initial guess; the
+// options database overrides them through the prefix, e.g. -drag_ksp_type, -drag_pc_type,
+// -drag_ksp_rtol, -drag_ksp_max_it. Against point Jacobi (PCJACOBI, the default before
+// 2026-11-28) on example 2 at h = 0.025 m: 13 CG iterations a component instead of 37 on one
+// rank, 15 on 2 ranks, 17 on 16, each about three matrix-vector products' work instead of one:
+// a third of the Krylov solve's reductions and halo exchanges for about the same arithmetic
+// (docs/mpm2grid.md, "Benchmarks"). Incomplete Cholesky blocks (-drag_pc_type bjacobi) took 4
+// to 13 but are not safe here: the matrix is not an M-matrix (D couples a species' nodes with
+// positive entries), and in 3D at dt = 1000 tau_d ICC(0) had a negative pivot and, shifted, CG
+// stalled. The matrix has block size 2, so -drag_pc_type pbjacobi inverts each node's 2 x 2
+// block.
 //
 // The header does not include PETSc: its global Vec and Mat would clash with mpm2grid's Eigen
 // Vec<Dim> and Mat<Dim> wherever both namespaces are open. The PETSc objects live in the .cpp.
@@ -80,10 +100,14 @@ struct NodeNumbering {
                                   const std::vector<char>& owned_block);
 };
 
+// Where the solve's rows go: with the nodes' owners, or in equal shares over the ranks.
+enum class DragRows { owners, balanced };
+
 // What one solve did, over the Dim components.
 struct SolveStats {
   long unknowns = 0;         // rows of the global system (2 x coupled nodes)
-  long owned_nodes = 0;      // the coupled nodes this rank owns (its share of the solve's work)
+  long owned_nodes = 0;      // the coupled nodes this rank owns (its share of the assembly)
+  long solved_nodes = 0;     // the coupled nodes whose rows this rank holds in the Krylov solve
   int iterations = 0;        // most Krylov iterations of a component
   double residual_norm = 0;  // largest final residual norm of a component (the KSP's norm type)
   int reason = 0;            // PETSc's KSPConvergedReason of the component with the most iterations
@@ -95,7 +119,7 @@ class ConsistentDrag {
  public:
   // COLLECTIVE on comm. Creates the KSP with the defaults above, then reads the options database
   // under `prefix`.
-  explicit ConsistentDrag(const mpi::Comm& comm, const std::string& prefix = "drag_");
+  explicit ConsistentDrag(const mpi::Comm& comm, const std::string& prefix = "drag_", DragRows rows = DragRows::owners);
   ~ConsistentDrag();
   ConsistentDrag(const ConsistentDrag&) = delete;
   ConsistentDrag& operator=(const ConsistentDrag&) = delete;
@@ -116,15 +140,18 @@ class ConsistentDrag {
   const std::string& prefix() const { return prefix_; }
 
  private:
+  struct Layouts;
+  void prepare_vectors(const Layouts& layouts);
   void assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil, const std::vector<double>& soil_drag,
                 const NodeFields<Dim>& soil_nodes, const NodeFields<Dim>& water_nodes, double dt,
-                const NodeNumbering& numbering, const std::vector<long>& owned_slots, long total,
+                const NodeNumbering& numbering, const std::vector<long>& owned_slots, const Layouts& layouts,
                 const std::vector<int>* groups);
 
-  struct Petsc;  // the KSP, the matrix (rebuilt every call: the pattern follows the particles)
-                 // and the vectors (kept while this rank's size stays the same)
+  struct Petsc;  // the KSP, the matrix (rebuilt every call: the pattern follows the particles),
+                 // the vectors and the scatter (kept while every rank's counts stay the same)
   mpi::Comm comm_;
   std::string prefix_;
+  DragRows rows_;
   std::unique_ptr<Petsc> petsc_;
 };
 

@@ -53,7 +53,7 @@ Simulation<Dim>::Simulation(const SimulationSettings<Dim>& settings, std::option
   }
   if (s_.drag != DragScheme::consistent) return;
   if (!comm_) throw std::invalid_argument("the consistent drag solve needs a communicator");
-  consistent_ = std::make_unique<ConsistentDrag<Dim>>(*comm_, "drag_");
+  consistent_ = std::make_unique<ConsistentDrag<Dim>>(*comm_, "drag_", s_.drag_rows);
 }
 
 template <int Dim>

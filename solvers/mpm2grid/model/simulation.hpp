@@ -68,6 +68,9 @@ struct SimulationSettings {
   WaterSettings water;
   SoilSettings soil;
   DragScheme drag = DragScheme::lumped;
+  // With the consistent drag over several ranks: the Krylov solve's rows on the coupled nodes'
+  // owners, or in equal shares (coupling/consistent_drag.hpp).
+  DragRows drag_rows = DragRows::owners;
   // implicit_end: the elastic forces at the step's end, solved by Newton-Krylov over the
   // communicator (PETSc options prefix "implicit_"); with the lumped drag, without the mixture.
   ForceScheme forces = ForceScheme::explicit_start;

@@ -256,6 +256,7 @@ class MpmRun {
     p_.dt_cap *= 1.25;  // infinity stays infinity
     drag_iterations_ = std::max(drag_iterations_, static_cast<long long>(sim_.drag_stats().iterations));
     drag_owned_nodes_ += sim_.drag_stats().owned_nodes;
+    drag_solved_nodes_ += sim_.drag_stats().solved_nodes;
     // After the first solve every solver has read its options: one nothing read is a mistake.
     if (petsc_ && sim_.steps() == first_step_ + 1)
       if (const auto unused = petsc_->unused_options(); !unused.empty())
@@ -514,13 +515,18 @@ class MpmRun {
     record_.extra()["dt_limiters"] = p_.limiters;
     if (scene_.simulation.drag == DragScheme::consistent) {
       record_.extra()["drag_ksp_max_iterations"] = drag_iterations_;
-      // The solve's work per rank: its coupled nodes per step (this run's steps, or since the
-      // restart), least, mean and most over the ranks. Every rank waits in the Krylov
-      // iterations' reductions for the one with the most.
+      // The solve's work per rank, per step (this run's steps, or since the restart), least, mean
+      // and most over the ranks: the coupled nodes it owns (it assembles their rows) and those
+      // whose rows it holds in the Krylov solve (every rank waits in the iterations' reductions
+      // for the one with the most).
       const double steps = static_cast<double>(std::max(1LL, sim_.steps() - first_step_));
-      const double mine = static_cast<double>(drag_owned_nodes_) / steps;
-      record_.extra()["drag_coupled_nodes_per_rank"] = {
-          {"min", comm_.min(mine)}, {"mean", comm_.sum(mine) / comm_.size()}, {"max", comm_.max(mine)}};
+      const auto spread = [&](long long summed) {
+        const double mine = static_cast<double>(summed) / steps;
+        return nlohmann::json{
+            {"min", comm_.min(mine)}, {"mean", comm_.sum(mine) / comm_.size()}, {"max", comm_.max(mine)}};
+      };
+      record_.extra()["drag_coupled_nodes_per_rank"] = spread(drag_owned_nodes_);
+      record_.extra()["drag_solved_nodes_per_rank"] = spread(drag_solved_nodes_);
     }
     if (implicit()) {
       // This run's (or its part since the restart: the counts start with the simulation), per step.
@@ -633,6 +639,7 @@ class MpmRun {
   std::optional<ParticleExtremes> extremes_;  // the last blow-up check's, while the particles stay as it saw them
   long long drag_iterations_ = 0;  // most KSP iterations of one consistent drag solve in this run
   long long drag_owned_nodes_ = 0;      // coupled nodes this rank owned, summed over this run's steps
+  long long drag_solved_nodes_ = 0;     // coupled nodes whose rows this rank held in the Krylov solve, the same
   std::array<long long, 2> particle_steps_{};  // water and soil particles at each step's start, summed
   long long grid_block_steps_ = 0;             // blocks of this rank's grid (owned and ghost) after each step, summed
   long long first_step_ = 0;            // the step this run (or its restart) began at
