@@ -21,8 +21,9 @@ outflow_discharge_max: the largest water discharge through the outlet in series.
 sampled at the output interval; empty without an outlet), drag_coupled_nodes_rank_mean and _max:
 the consistent drag's coupled nodes per step owned by a rank, mean and most over the ranks (the
 assembly's work per rank; empty without the consistent drag), drag_solved_nodes_rank_max: the
-most whose rows a rank held in the Krylov solve (decomposition.drag_rows). From run.json's per_rank block (over
-several ranks; the compute phases' own seconds, waits taken off, summed per rank):
+most whose rows a rank held in the Krylov solve (decomposition.drag_rows). From run.json's
+per_rank block (over several ranks; the compute phases' own seconds, waits taken off, summed per
+rank):
 rank_compute_spread, the most loaded rank's compute over the mean; rank_work_spread, the same of
 the particle-steps (water and soil); rank_cost_spread, of the compute per particle-step (a rank
 that is slower over the same work: its core); rank_slowest_same, the share of the compute phases

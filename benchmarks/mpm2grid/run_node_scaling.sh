@@ -9,7 +9,8 @@
 #     MPM2GRID    the executable; SCENES_DIR solvers/mpm2grid/scenes; BENCH_DIR benchmarks/mpm2grid
 #     OUT_DIR     one folder per run (run.json, series.csv, summary.json, stderr; no HDF5)
 #   env: RANKS ("1 2 4 8 16"), REPEATS (2), COPIES (the node's cores: the ceiling's pinned copies),
-#        CASES ("ex2 ex2fine ex2consistent ex2balanced ex2jacobi 3d"), BIND ("--bind-to core --map-by core"),
+#        CASES ("ex2 ex2fine ex2consistent ex2balanced ex2jacobi 3d"),
+#        BIND ("--bind-to core --map-by core"),
 #        HYBRID ("": none; e.g. "8x2 4x4 2x8"): ranks x threads per rank (OMP_NUM_THREADS), each
 #        rank bound to its own cores (--map-by slot:PE=T), its threads to one core each; run after
 #        each case's rank counts, as often, named CASE-rRANKStTHREADS-REPEAT
