@@ -21,7 +21,10 @@ outflow_discharge_max: the largest water discharge through the outlet in series.
 sampled at the output interval; empty without an outlet), drag_coupled_nodes_rank_mean and _max:
 the consistent drag's coupled nodes per step owned by a rank, mean and most over the ranks (the
 assembly's work per rank; empty without the consistent drag), drag_solved_nodes_rank_max: the
-most whose rows a rank held in the Krylov solve (decomposition.drag_rows). From run.json's
+most whose rows a rank held in the Krylov solve (decomposition.drag_rows), drag_rows_s_mean and
+_max, drag_exchange_s_mean and _max, drag_krylov_s_mean and _max: a rank's seconds computing its
+rows of the drag matrix, in PETSc's assembly (waiting for the others included) and in the Krylov
+solves, mean and most over the ranks (all inside the grid solve phase). From run.json's
 per_rank block (over several ranks; the compute phases' own seconds, waits taken off, summed per
 rank):
 rank_compute_spread, the most loaded rank's compute over the mean; rank_work_spread, the same of
@@ -48,6 +51,8 @@ COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "parti
            "dt_first", "dt_last", "rss_max_kb", "rss_sum_kb", "kinetic_energy_max", "dt_largest",
            "halo_messages_per_step", "migration_messages_per_step", "outflow_discharge_max",
            "drag_coupled_nodes_rank_mean", "drag_coupled_nodes_rank_max", "drag_solved_nodes_rank_max",
+           "drag_rows_s_mean", "drag_rows_s_max", "drag_exchange_s_mean", "drag_exchange_s_max",
+           "drag_krylov_s_mean", "drag_krylov_s_max",
            "rank_compute_spread",
            "rank_work_spread", "rank_cost_spread", "rank_slowest_same"]
 STEP_PHASES = ["balance", "grid", "halo plan", "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
@@ -163,6 +168,9 @@ def metrics(run, rss_dir=None):
         solved = r.get("drag_solved_nodes_per_rank", {})
         if solved:
             m["drag_solved_nodes_rank_max"] = f"{solved['max']:.6g}"
+        for part, spread in r.get("drag_seconds_per_rank", {}).items():
+            m[f"drag_{part}_s_mean"] = f"{spread['mean']:.6g}"
+            m[f"drag_{part}_s_max"] = f"{spread['max']:.6g}"
         m.update(per_rank_spreads(r.get("per_rank")))
         phases = r.get("phases", {})
         for p in STEP_PHASES + CHECKS:

@@ -75,8 +75,13 @@ def coupled_share(row):
     solved = row.get("drag_solved_nodes_rank_max")
     rows = (f"; the solve's rows of {float(solved):.0f} on the busiest rank there"
             if solved and float(solved) != float(most) else "")
+    seconds = ""
+    if row.get("drag_rows_s_max"):
+        pair = lambda k: f"{float(row[f'drag_{k}_s_max']):.3g} / {float(row[f'drag_{k}_s_mean']):.3g} s"
+        seconds = (f" Its seconds, most / mean over the ranks: computing the rows {pair('rows')}, PETSc's "
+                   f"assembly (waits included) {pair('exchange')}, the Krylov solves {pair('krylov')}.")
     return (f" The drag solve's coupled nodes: {float(most):.0f} on the busiest rank against {float(mean):.0f} "
-            f"on average ({float(most) / float(mean):.1f}x){rows}.")
+            f"on average ({float(most) / float(mean):.1f}x){rows}.{seconds}")
 
 
 def collect(label, runs_dir):

@@ -92,6 +92,16 @@ for d in (one, two):
     with open(os.path.join(d, "effective_config.yaml")) as f:
         balanced = re.search(r"^\s*drag_rows:\s*balanced\s*$", f.read(), re.M) is not None
     counts.append((r.get("drag_coupled_nodes_per_rank"), r.get("drag_solved_nodes_per_rank"), balanced))
+    # The drag's rows, PETSc's assembly and the Krylov solves are disjoint intervals inside each
+    # rank's grid solve phase, on the same clock: their sum is at most the phase, per rank and so
+    # in the mean.
+    if "drag_seconds_per_rank" in r:
+        ds, solve = r["drag_seconds_per_rank"], r["phases"]["step/grid solve"]["mean_s"]
+        parts = {k: ds[k]["mean"] for k in ("rows", "exchange", "krylov")}
+        assert all(v >= 0 for v in parts.values()) and 0 < sum(parts.values()) <= solve * (1 + 1e-9), (
+            f"{d}/run.json: drag seconds {parts}, grid solve {solve} s")
+        print(f"{d}: drag rows {parts['rows']:.3f} s, exchange {parts['exchange']:.3f} s, Krylov "
+              f"{parts['krylov']:.3f} s of the grid solve phase's {solve:.3f} s (rank mean)")
 if counts[0][0] is not None:
     for key, (c1, c2) in (("coupled", (counts[0][0], counts[1][0])), ("solved", (counts[0][1], counts[1][1]))):
         assert c1["min"] == c1["mean"] == c1["max"], f"{one}/run.json: one rank, yet {key} nodes {c1}"

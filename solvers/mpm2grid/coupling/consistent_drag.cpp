@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <limits>
 #include <stdexcept>
 
@@ -311,11 +312,11 @@ void ConsistentDrag<Dim>::prepare_vectors(const Layouts& layouts) {
 }
 
 template <int Dim>
-void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil,
-                                   const std::vector<double>& soil_drag, const NodeFields<Dim>& soil_nodes,
-                                   const NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering,
-                                   const std::vector<long>& owned_slots, const Layouts& layouts,
-                                   const std::vector<int>* groups) {
+double ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil,
+                                     const std::vector<double>& soil_drag, const NodeFields<Dim>& soil_nodes,
+                                     const NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering,
+                                     const std::vector<long>& owned_slots, const Layouts& layouts,
+                                     const std::vector<int>* groups) {
   constexpr int kNodes = BlockGrid<Dim>::kNodes, kWindow = Windows<Dim>::kSize;
   Petsc& ps = *petsc_;
   ::Mat& matrix = ps.matrix;
@@ -466,10 +467,13 @@ void ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles<D
     SUITE_PETSC_CHECK(MatSetValues(matrix, 2, node_rows.data(), static_cast<PetscInt>(width), cols.data(),
                                    values.data(), ADD_VALUES));
   }
+  const auto exchange_start = std::chrono::steady_clock::now();
   SUITE_PETSC_CHECK(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY));
   SUITE_PETSC_CHECK(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY));
+  const double exchange_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchange_start).count();
   SUITE_PETSC_CHECK(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE));
   SUITE_PETSC_CHECK(MatSetOption(matrix, MAT_SPD, PETSC_TRUE));
+  return exchange_s;
 }
 
 template <int Dim>
@@ -535,13 +539,20 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
     water_nodes.velocity[slot] = node_local_velocity(water_nodes, slot, dt);
   }
 
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  const Clock::time_point assembly_start = Clock::now();
   const Layouts layouts(counts, rows_);
   prepare_vectors(layouts);
-  assemble(grid, soil, soil_drag, soil_nodes, water_nodes, dt, numbering, owned_slots, layouts, groups);
+  SolveStats stats;
+  stats.exchange_s =
+      assemble(grid, soil, soil_drag, soil_nodes, water_nodes, dt, numbering, owned_slots, layouts, groups);
   Petsc& p = *petsc_;
   SUITE_PETSC_CHECK(KSPSetOperators(p.ksp, p.matrix, p.matrix));
-
-  SolveStats stats;
+  stats.rows_s = seconds_since(assembly_start) - stats.exchange_s;
+  const Clock::time_point krylov_start = Clock::now();
   stats.unknowns = 2 * layouts.total();
   stats.owned_nodes = owned;
   stats.solved_nodes = layouts.solve_count(comm_.rank());
@@ -594,6 +605,7 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
     }
     SUITE_PETSC_CHECK(VecRestoreArrayRead(solved, &x));
   }
+  stats.krylov_s = seconds_since(krylov_start);
   return stats;
 }
 

@@ -112,6 +112,11 @@ struct SolveStats {
   double residual_norm = 0;  // largest final residual norm of a component (the KSP's norm type)
   int reason = 0;            // PETSc's KSPConvergedReason of the component with the most iterations
   std::string reason_name;   // its name, e.g. "CONVERGED_RTOL"
+  // This rank's wall seconds: computing and inserting its rows (with the vectors' setup and the
+  // preallocation; with DragRows::balanced the counts' scatter too), PETSc's assembly (the rows for other ranks sent,
+  // theirs received, and the waiting for the slowest: a rank with few rows waits here), and the
+  // Krylov solves of the Dim components with their right-hand sides, solutions and scatters.
+  double rows_s = 0, exchange_s = 0, krylov_s = 0;
 };
 
 template <int Dim>
@@ -142,10 +147,11 @@ class ConsistentDrag {
  private:
   struct Layouts;
   void prepare_vectors(const Layouts& layouts);
-  void assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil, const std::vector<double>& soil_drag,
-                const NodeFields<Dim>& soil_nodes, const NodeFields<Dim>& water_nodes, double dt,
-                const NodeNumbering& numbering, const std::vector<long>& owned_slots, const Layouts& layouts,
-                const std::vector<int>* groups);
+  // Returns the seconds spent in PETSc's MatAssemblyBegin/End.
+  double assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil, const std::vector<double>& soil_drag,
+                  const NodeFields<Dim>& soil_nodes, const NodeFields<Dim>& water_nodes, double dt,
+                  const NodeNumbering& numbering, const std::vector<long>& owned_slots, const Layouts& layouts,
+                  const std::vector<int>* groups);
 
   struct Petsc;  // the KSP, the matrix (rebuilt every call: the pattern follows the particles),
                  // the vectors and the scatter (kept while every rank's counts stay the same)

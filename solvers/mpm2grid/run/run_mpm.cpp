@@ -257,6 +257,9 @@ class MpmRun {
     drag_iterations_ = std::max(drag_iterations_, static_cast<long long>(sim_.drag_stats().iterations));
     drag_owned_nodes_ += sim_.drag_stats().owned_nodes;
     drag_solved_nodes_ += sim_.drag_stats().solved_nodes;
+    drag_seconds_[0] += sim_.drag_stats().rows_s;
+    drag_seconds_[1] += sim_.drag_stats().exchange_s;
+    drag_seconds_[2] += sim_.drag_stats().krylov_s;
     // After the first solve every solver has read its options: one nothing read is a mistake.
     if (petsc_ && sim_.steps() == first_step_ + 1)
       if (const auto unused = petsc_->unused_options(); !unused.empty())
@@ -520,13 +523,18 @@ class MpmRun {
       // whose rows it holds in the Krylov solve (every rank waits in the iterations' reductions
       // for the one with the most).
       const double steps = static_cast<double>(std::max(1LL, sim_.steps() - first_step_));
-      const auto spread = [&](long long summed) {
-        const double mine = static_cast<double>(summed) / steps;
+      const auto spread = [&](double mine) {
         return nlohmann::json{
             {"min", comm_.min(mine)}, {"mean", comm_.sum(mine) / comm_.size()}, {"max", comm_.max(mine)}};
       };
-      record_.extra()["drag_coupled_nodes_per_rank"] = spread(drag_owned_nodes_);
-      record_.extra()["drag_solved_nodes_per_rank"] = spread(drag_solved_nodes_);
+      record_.extra()["drag_coupled_nodes_per_rank"] = spread(static_cast<double>(drag_owned_nodes_) / steps);
+      record_.extra()["drag_solved_nodes_per_rank"] = spread(static_cast<double>(drag_solved_nodes_) / steps);
+      // Where the grid solve phase's time goes with this drag (SolveStats): each rank's seconds
+      // over the run (or since the restart) computing its rows, in PETSc's assembly and in the
+      // Krylov solves, least, mean and most.
+      record_.extra()["drag_seconds_per_rank"] = {{"rows", spread(drag_seconds_[0])},
+                                                  {"exchange", spread(drag_seconds_[1])},
+                                                  {"krylov", spread(drag_seconds_[2])}};
     }
     if (implicit()) {
       // This run's (or its part since the restart: the counts start with the simulation), per step.
@@ -640,6 +648,7 @@ class MpmRun {
   long long drag_iterations_ = 0;  // most KSP iterations of one consistent drag solve in this run
   long long drag_owned_nodes_ = 0;      // coupled nodes this rank owned, summed over this run's steps
   long long drag_solved_nodes_ = 0;     // coupled nodes whose rows this rank held in the Krylov solve, the same
+  std::array<double, 3> drag_seconds_{};       // this rank's seconds in the drag's rows, exchange and solves, the same
   std::array<long long, 2> particle_steps_{};  // water and soil particles at each step's start, summed
   long long grid_block_steps_ = 0;             // blocks of this rank's grid (owned and ghost) after each step, summed
   long long first_step_ = 0;            // the step this run (or its restart) began at
