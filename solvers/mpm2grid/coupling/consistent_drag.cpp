@@ -128,21 +128,33 @@ class Windows {
   }
 
   // out[n]: the slot of the window's node n (offset (n % 7 - 3, n / 7 % 7 - 3, ...) from the
-  // node of `slot`, which lies in a coupled block), or -1 where the grid has no node.
+  // node of `slot`, which lies in a coupled block), or -1 where the grid has no node. Per axis,
+  // each of the 7 offsets gives a step between neighbour blocks and a place inside the block;
+  // a window node adds them up (x fastest).
   void slots(long slot, std::array<long, kSize>& out) const {
     const auto& first = first_[static_cast<std::size_t>(coupled_.place[static_cast<std::size_t>(slot / kNodes)])];
-    Index<Dim> local;
-    for (int d = 0, r = static_cast<int>(slot % kNodes); d < Dim; ++d, r /= kSide) local[d] = r % kSide;
-    for (int n = 0; n < kSize; ++n) {
-      int neighbour = 0, at = 0;
-      for (int d = 0, r = n, stride3 = 1, stride4 = 1; d < Dim; ++d, r /= 7, stride3 *= 3, stride4 *= kSide) {
-        const int c = local[d] + r % 7 - 3;  // -3 .. 6
+    std::array<std::array<int, 7>, Dim> step, at;
+    for (int d = 0, r = static_cast<int>(slot % kNodes), stride3 = 1, stride4 = 1; d < Dim;
+         ++d, r /= kSide, stride3 *= 3, stride4 *= kSide)
+      for (int o = 0; o < 7; ++o) {
+        const int c = r % kSide + o - 3;  // -3 .. 6
         const int shift = c < 0 ? -1 : (c >= kSide ? 1 : 0);
-        neighbour += (shift + 1) * stride3;
-        at += (c - shift * kSide) * stride4;
+        step[static_cast<std::size_t>(d)][static_cast<std::size_t>(o)] = (shift + 1) * stride3;
+        at[static_cast<std::size_t>(d)][static_cast<std::size_t>(o)] = (c - shift * kSide) * stride4;
       }
+    const auto put = [&](std::size_t n, int neighbour, int place) {
       const long block_first = first[static_cast<std::size_t>(neighbour)];
-      out[static_cast<std::size_t>(n)] = block_first < 0 ? -1 : block_first + at;
+      out[n] = block_first < 0 ? -1 : block_first + place;
+    };
+    std::size_t n = 0;
+    if constexpr (Dim == 2) {
+      for (std::size_t y = 0; y < 7; ++y)
+        for (std::size_t x = 0; x < 7; ++x) put(n++, step[1][y] + step[0][x], at[1][y] + at[0][x]);
+    } else {
+      for (std::size_t z = 0; z < 7; ++z)
+        for (std::size_t y = 0; y < 7; ++y)
+          for (std::size_t x = 0; x < 7; ++x)
+            put(n++, step[2][z] + step[1][y] + step[0][x], at[2][z] + at[1][y] + at[0][x]);
     }
   }
 
