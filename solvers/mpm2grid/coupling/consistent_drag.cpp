@@ -72,6 +72,11 @@ struct ConsistentDrag<Dim>::Petsc {
 
 namespace {
 
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
 constexpr int ipow(int base, int exponent) {
   int v = 1;
   for (int i = 0; i < exponent; ++i) v *= base;
@@ -479,10 +484,10 @@ double ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles
     SUITE_PETSC_CHECK(MatSetValues(matrix, 2, node_rows.data(), static_cast<PetscInt>(width), cols.data(),
                                    values.data(), ADD_VALUES));
   }
-  const auto exchange_start = std::chrono::steady_clock::now();
+  const Clock::time_point exchange_start = Clock::now();
   SUITE_PETSC_CHECK(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY));
   SUITE_PETSC_CHECK(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY));
-  const double exchange_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchange_start).count();
+  const double exchange_s = seconds_since(exchange_start);
   SUITE_PETSC_CHECK(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE));
   SUITE_PETSC_CHECK(MatSetOption(matrix, MAT_SPD, PETSC_TRUE));
   return exchange_s;
@@ -498,12 +503,8 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
   // collectives whatever it finds, and a problem on any rank stops every rank here rather than
   // leaving the others waiting inside PETSc.
   const long owned = numbering.owned;
-  const std::vector<long long> counts = comm_.all_gather(static_cast<long long>(owned));
-  long long lower = 0, total = 0;
-  for (std::size_t r = 0; r < counts.size(); ++r) {
-    if (static_cast<int>(r) < comm_.rank()) lower += counts[r];
-    total += counts[r];
-  }
+  const Layouts layouts(comm_.all_gather(static_cast<long long>(owned)), rows_);
+  const long lower = layouts.owners[static_cast<std::size_t>(comm_.rank())], total = layouts.total();
   std::string problem;
   const auto sized = [&](const NodeFields<Dim>& f) {
     return f.mass.size() == nodes && f.momentum.size() == nodes && f.force.size() == nodes &&
@@ -551,12 +552,7 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
     water_nodes.velocity[slot] = node_local_velocity(water_nodes, slot, dt);
   }
 
-  using Clock = std::chrono::steady_clock;
-  const auto seconds_since = [](Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-  };
   const Clock::time_point assembly_start = Clock::now();
-  const Layouts layouts(counts, rows_);
   prepare_vectors(layouts);
   SolveStats stats;
   stats.exchange_s =
