@@ -49,3 +49,6 @@ run_one() {
   fi
   echo "$rc"
 }
+
+# check_run STATUS DIR: stops the driver, with the run's last words, unless STATUS (run_one's) is 0.
+check_run() { [ "$1" = 0 ] || { echo "run $2 failed ($1): $(tail -2 "$2.err")" >&2; exit 1; }; }

@@ -2,8 +2,8 @@
 # Every mpm2grid benchmark in turn, then benchmarks/results/mpm2grid/README.md from their tables.
 # Run on an idle machine (the timings are medians of interleaved repeats, but 2 ranks on 2 cores
 # take every core).
-#   benchmarks/mpm2grid/run_all.sh [MPM2GRID]      (about 63 min on 2 idle cores)
-#   env: ONLY ("particle_step table_3_4_scaling message_counts rebalance drag_solver threads
+#   benchmarks/mpm2grid/run_all.sh [MPM2GRID]      (about 73 min on 2 idle cores)
+#   env: ONLY ("particle_step table_3_4_scaling message_counts rebalance drag_solver wet_soil threads
 #        martin_moyce dam_convergence drag_stability soil_stiffness granular_collapse implicit_forces":
 #        a subset),
 #        and every driver's own variables (REPEATS, STEPS, ...) and common.sh's MPM2GRID MPIEXEC OUT NICE KEEP_RUNS
@@ -11,10 +11,10 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 out=${OUT:-$root/benchmarks/results/mpm2grid}
-only=${ONLY:-particle_step table_3_4_scaling message_counts rebalance drag_solver threads martin_moyce dam_convergence drag_stability soil_stiffness granular_collapse implicit_forces}
+only=${ONLY:-particle_step table_3_4_scaling message_counts rebalance drag_solver wet_soil threads martin_moyce dam_convergence drag_stability soil_stiffness granular_collapse implicit_forces}
 declare -A driver=([particle_step]=run_particle_step.sh [table_3_4_scaling]=run_table_3_4_scaling.sh
   [message_counts]=run_message_counts.sh [rebalance]=run_rebalance.sh [drag_solver]=run_drag_solver.sh
-  [threads]=run_threads.sh
+  [wet_soil]=run_wet_soil.sh [threads]=run_threads.sh
   [martin_moyce]=run_martin_moyce.sh [dam_convergence]=run_dam_convergence.sh [drag_stability]=run_drag_stability.sh
   [soil_stiffness]=run_soil_stiffness.sh [granular_collapse]=run_granular_collapse.sh
   [implicit_forces]=run_implicit_forces.sh)
@@ -39,7 +39,7 @@ done
   # dam_convergence_bed_shear is run_dam_convergence.sh with the NAME and SCENE_ARGS its header gives;
   # threads_h0.025 is H="0.025 m" REPEATS=3 NAME=threads_h0.025 run_threads.sh (about 8 min),
   # threads_free_water MPM_ARGS=free_water_field=true CONFIGS="1x1 1x2" REPEATS=4 NAME=... (4 min).
-  for b in particle_step table_3_4_scaling message_counts rebalance drag_solver node_scaling comm_model threads threads_h0.025 \
+  for b in particle_step table_3_4_scaling message_counts rebalance drag_solver wet_soil node_scaling comm_model threads threads_h0.025 \
     threads_free_water martin_moyce dam_convergence \
     dam_convergence_bed_shear drag_stability soil_stiffness granular_collapse implicit_forces implicit_forces_h0.25 \
     implicit_forces_closure implicit_forces_closure_h0.25; do

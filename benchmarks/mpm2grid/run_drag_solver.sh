@@ -19,13 +19,12 @@ repeats=${REPEATS:-3} long_h=${LONG_H:-0.1 m} long_end=${LONG_END:-1.5}
 scene=$scenes/table_3_4_example2.yaml
 common=(drag=consistent "time.output=1000 s" "time.series=1000 s")
 work_dir drag_solver
-check() { [ "$1" = 0 ] || { echo "run $2 failed ($1): $(tail -2 "$2.err")" >&2; exit 1; }; }
 for ranks in $ranks_list; do
   for rows in owners balanced; do
     [ "$ranks" = 1 ] && [ "$rows" = balanced ] && continue
     for pc in $pcs; do
       run=$work/iterations-$pc-$rows-r$ranks
-      check "$(run_one "$run" "$ranks" "$scene" "grid.spacing=$h" "time.max_steps=$steps" "${common[@]}" \
+      check_run "$(run_one "$run" "$ranks" "$scene" "grid.spacing=$h" "time.max_steps=$steps" "${common[@]}" \
         "decomposition.drag_rows=$rows" "petsc_options=-drag_pc_type $pc")" "$run"
     done
   done
@@ -34,10 +33,10 @@ done
 for ((r = 1; r <= repeats; r++)); do
   for pc in $pcs; do
     run=$work/short-$pc-$r
-    check "$(run_one "$run" 1 "$scene" "grid.spacing=$h" "time.max_steps=$steps" "${common[@]}" \
+    check_run "$(run_one "$run" 1 "$scene" "grid.spacing=$h" "time.max_steps=$steps" "${common[@]}" \
       "petsc_options=-drag_pc_type $pc")" "$run"
     run=$work/long-$pc-$r
-    check "$(run_one "$run" 1 "$scene" "grid.spacing=$long_h" "time.end=$long_end s" "${common[@]}" \
+    check_run "$(run_one "$run" 1 "$scene" "grid.spacing=$long_h" "time.end=$long_end s" "${common[@]}" \
       "petsc_options=-drag_pc_type $pc")" "$run"
   done
   echo "repeat $r done"

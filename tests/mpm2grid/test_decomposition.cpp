@@ -1,7 +1,8 @@
 // The pieces of the domain decomposition (decomposition/) that need no second rank: the METIS
 // partition of a block graph balances both species' particle counts within the tolerance it is
-// given (1%, plus one block) and keeps each part in one piece; keep_ranks renames parts so that
-// work stays where it was; block keys round-trip; a particle's packed state round-trips exactly.
+// given (1%, plus one block) and keeps each part in one piece, and spreads the wet soil (10%,
+// plus one block); keep_ranks renames parts so that work stays where it was; block keys
+// round-trip; a particle's packed state round-trips exactly.
 // The decomposition over ranks as a whole is tested end to end (1 vs 2 ranks,
 // run_ranks_agree.sh, and the decomposed steps in test_consistent_drag.cpp).
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "solvers/mpm2grid/decomposition/diffuse_partition.hpp"
 #include "solvers/mpm2grid/decomposition/partition.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
@@ -23,11 +25,11 @@ TEST(Partition, BalancesBothSpeciesOverConnectedParts) {
   // A 24 x 6 strip of blocks: soil in the left third (100 particles a block), water elsewhere
   // (30 a block). A split by block count would give one rank all the soil.
   std::vector<Index<2>> blocks;
-  std::vector<std::array<long long, 2>> weights;
+  std::vector<BlockWeight> weights;
   for (int j = 0; j < 6; ++j)
     for (int i = 0; i < 24; ++i) {
       blocks.push_back({i, j});
-      weights.push_back(i < 8 ? std::array<long long, 2>{100, 0} : std::array<long long, 2>{0, 30});
+      weights.push_back(i < 8 ? BlockWeight{100, 0, 0} : BlockWeight{0, 30, 0});
     }
   for (const int parts : {2, 3, 4}) {
     const auto part = partition_blocks(block_graph<2>(blocks), weights, parts);
@@ -42,6 +44,44 @@ TEST(Partition, BalancesBothSpeciesOverConnectedParts) {
             << parts << " parts, species " << s;
     }
   }
+}
+
+TEST(Partition, SpreadsTheWetSoilOverTheParts) {
+  // A 64 x 32 strip of blocks: soil below (60 particles a block), water above (20), and where
+  // they meet a row of blocks home to both, whose soil is the wet soil (64 x 60 = 3,840
+  // particles: 240 a part in 16 parts). Balancing the particle counts alone cuts the strip into
+  // columns of which few hold much of that row; with the wet soil as a third constraint every
+  // part holds its share within the wet soil's tolerance (10%) and one block, and the
+  // particles stay within theirs (1%) and one block.
+  std::vector<Index<2>> blocks;
+  std::vector<BlockWeight> weights;
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 64; ++i) {
+      blocks.push_back({i, j});
+      const long long soil = j <= 15 ? 60 : 0, water = j >= 15 ? 20 : 0;
+      weights.push_back({soil, water, wet_soil(soil, water)});
+    }
+  constexpr int parts = 16;
+  const BlockGraph graph = block_graph<2>(blocks);
+  // Each part's load of each quantity from weights w, under the partition given w.
+  const auto loads = [&](const std::vector<BlockWeight>& w) {
+    const auto part = fresh_partition(graph, w, parts, 1.0167, 1.025);
+    std::vector<BlockWeight> load(parts, BlockWeight{});
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+      for (std::size_t q = 0; q < kQuantities; ++q) load[static_cast<std::size_t>(part[b])][q] += weights[b][q];
+    return load;
+  };
+  const BlockWeight total{64 * 16 * 60, 64 * 17 * 20, 64 * 60};
+  for (const auto& l : loads(weights))
+    for (std::size_t q = 0; q < kQuantities; ++q)
+      EXPECT_LE(static_cast<double>(l[q]), kTolerance[q] * static_cast<double>(total[q]) / parts + 60)
+          << "quantity " << q;
+  // Without the third constraint (no wet soil given) some part holds at least twice its share.
+  auto dry = weights;
+  for (auto& w : dry) w[kWetSoil] = 0;
+  long long most = 0;
+  for (const auto& l : loads(dry)) most = std::max(most, l[kWetSoil]);
+  EXPECT_GE(most, 2 * total[kWetSoil] / parts);
 }
 
 TEST(Partition, KeepRanksFollowsTheWork) {

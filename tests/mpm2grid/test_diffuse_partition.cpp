@@ -1,8 +1,8 @@
 // The diffusive rebalance (decomposition/diffuse_partition.hpp) against a fresh METIS partition
 // of the same loads: it reaches the target in both species, moves a small share of the
 // particles a fresh partition moves, keeps every part in one piece, leaves a balanced partition
-// as it is, gives blocks without a part a neighbour's, declines what borders cannot carry and
-// widens its target to half the largest block.
+// as it is, gives blocks without a part a neighbour's, declines what borders cannot carry
+// unless it is balanced already, and widens its target to half the largest block.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,7 +16,7 @@
 namespace suite::mpm2grid {
 namespace {
 
-using Weights = std::vector<std::array<long long, 2>>;
+using Weights = std::vector<BlockWeight>;
 
 // A W x H strip of blocks: soil (60 particles a block) in the lower half, water (20) above.
 struct Strip {
@@ -27,23 +27,23 @@ struct Strip {
     for (int j = 0; j < H; ++j)
       for (int i = 0; i < W; ++i) {
         blocks.push_back({i, j});
-        weights.push_back(j < H / 2 ? std::array<long long, 2>{60, 0} : std::array<long long, 2>{0, 20});
+        weights.push_back(j < H / 2 ? BlockWeight{60, 0, 0} : BlockWeight{0, 20, 0});
       }
   }
 };
 
-// The largest load over the mean, per species.
-std::array<double, 2> imbalance(const Weights& w, const std::vector<int>& part, int parts) {
-  std::vector<std::array<double, 2>> load(static_cast<std::size_t>(parts), {0, 0});
-  std::array<double, 2> total{0, 0};
+// The largest load over the mean, per quantity (1 for one that is zero everywhere).
+std::array<double, kQuantities> imbalance(const Weights& w, const std::vector<int>& part, int parts) {
+  std::vector<std::array<double, kQuantities>> load(static_cast<std::size_t>(parts), std::array<double, kQuantities>{});
+  std::array<double, kQuantities> total{}, worst{1, 1, 1};
   for (std::size_t b = 0; b < w.size(); ++b)
-    for (std::size_t s = 0; s < 2; ++s) {
+    for (std::size_t s = 0; s < kQuantities; ++s) {
       load[static_cast<std::size_t>(part[b])][s] += static_cast<double>(w[b][s]);
       total[s] += static_cast<double>(w[b][s]);
     }
-  std::array<double, 2> worst{0, 0};
   for (const auto& l : load)
-    for (std::size_t s = 0; s < 2; ++s) worst[s] = std::max(worst[s], l[s] * parts / total[s]);
+    for (std::size_t s = 0; s < kQuantities; ++s)
+      if (total[s] > 0) worst[s] = std::max(worst[s], l[s] * parts / total[s]);
   return worst;
 }
 
@@ -156,6 +156,32 @@ TEST(DiffusePartition, DeclinesWhatBordersCannotCarry) {
   weights[0][0] = weights[1][0] = 400;
   const BlockGraph g = block_graph<2>(blocks);
   EXPECT_FALSE(diffuse_partition(g, weights, before, 3, 1.1, 1.1));
+}
+
+TEST(DiffusePartition, KeepsWetSoilThatNoBorderCarries) {
+  // Four parts as vertical quarters of a 16 x 4 strip, each holding one block of wet soil (100
+  // soil particles and 20 water, in its second column, away from every border); the water over
+  // the first quarter is twice as dense (40 a block), which puts part 0 1.55x over the water's
+  // mean. No border carries wet soil, but it is balanced already: the water is levelled (the
+  // target 1.1) and each wet block stays where it is.
+  Strip strip(16, 4);
+  std::vector<int> quarters(strip.blocks.size());
+  for (std::size_t b = 0; b < quarters.size(); ++b) {
+    const int i = strip.blocks[b][0], j = strip.blocks[b][1];
+    quarters[b] = i / 4;
+    if (j == 1 && i % 4 == 1) strip.weights[b] = {100, 20, wet_soil(100, 20)};
+    if (j >= 2 && i < 4) strip.weights[b][kWater] = 40;
+  }
+  ASSERT_NEAR(imbalance(strip.weights, quarters, 4)[kWater], 340.0 / 220.0, 1e-12);
+  const auto diffused = diffuse_partition(block_graph<2>(strip.blocks), strip.weights, quarters, 4, 1.1, 1.1);
+  ASSERT_TRUE(diffused);
+  const auto now = imbalance(strip.weights, diffused->part, 4);
+  EXPECT_LE(now[kWater], 1.1);
+  EXPECT_LE(now[kSoil], 1.1);
+  for (std::size_t b = 0; b < quarters.size(); ++b)
+    if (strip.weights[b][kWetSoil] > 0) {
+      EXPECT_EQ(diffused->part[b], quarters[b]) << "wet block " << b;
+    }
 }
 
 TEST(DiffusePartition, ALumpyBlockWidensTheTarget) {

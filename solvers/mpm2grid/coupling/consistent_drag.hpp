@@ -37,6 +37,8 @@
 // (docs/mpm2grid.md, "Benchmarks"); at 16 ranks it is unmeasured. The global numbering and so the
 // matrix are the same in both; the Krylov iterations differ by round-off (the reductions' order
 // follows the layout), and their number with a preconditioner that works on each rank's rows.
+// The other way to spread the rows, the nodes themselves over the ranks, is the partition's:
+// decomposition.balance_wet_soil (decomposition/partition.hpp).
 //
 // PETSc: a ConsistentDrag must be created and destroyed inside a suite::PetscSession (it owns a
 // KSP, freed in the destructor, which must run before PetscFinalize). Defaults: KSPCG, PCSOR

@@ -13,34 +13,38 @@
 namespace suite::mpm2grid {
 namespace {
 
-using Load = std::array<double, 2>;
+using Load = std::array<double, kQuantities>;
 
-// What the moves work on: every block's part, the parts' loads, and which species count.
+// What the moves work on: every block's part, the parts' loads, and which quantities count.
 struct State {
   const BlockGraph& graph;
-  const std::vector<std::array<long long, 2>>& weights;
+  const std::vector<BlockWeight>& weights;
   std::vector<int> part;
   std::vector<Load> load;
-  Load mean{0, 0};
-  Load limit{0, 0};   // the largest load over the mean to aim at, per species
-  Load accept{0, 0};  // and to accept
-  std::array<bool, 2> balanced{false, false};
+  Load mean{};
+  Load limit{};   // the largest load over the mean to aim at, per quantity
+  Load accept{};  // and to accept
+  std::array<bool, kQuantities> balanced{};
 
   double weight(std::size_t b, std::size_t s) const { return static_cast<double>(weights[b][s]); }
-  // The largest load over the mean, over the balanced species.
+  // The largest load over the mean, over the balanced quantities.
   double imbalance() const {
     double worst = 1;
-    for (std::size_t s = 0; s < 2; ++s)
+    for (std::size_t s = 0; s < kQuantities; ++s)
       if (balanced[s])
         for (const Load& l : load) worst = std::max(worst, l[s] / mean[s]);
     return worst;
   }
-  // Every balanced species within its limit (or `bound`).
+  // Quantity s within its limit (or `bound`) on every part.
+  bool within(std::size_t s, const Load& bound) const {
+    for (const Load& l : load)
+      if (l[s] > bound[s] * mean[s]) return false;
+    return true;
+  }
+  // Every balanced quantity within its limit (or `bound`).
   bool within(const Load* bound = nullptr) const {
-    for (std::size_t s = 0; s < 2; ++s)
-      if (balanced[s])
-        for (const Load& l : load)
-          if (l[s] > (bound ? *bound : limit)[s] * mean[s]) return false;
+    for (std::size_t s = 0; s < kQuantities; ++s)
+      if (balanced[s] && !within(s, bound ? *bound : limit)) return false;
     return true;
   }
   // Block b's neighbours in part p.
@@ -51,7 +55,7 @@ struct State {
     return n;
   }
   void move(std::size_t b, int to) {
-    for (std::size_t s = 0; s < 2; ++s) {
+    for (std::size_t s = 0; s < kQuantities; ++s) {
       load[static_cast<std::size_t>(part[b])][s] -= weight(b, s);
       load[static_cast<std::size_t>(to)][s] += weight(b, s);
     }
@@ -118,10 +122,10 @@ bool diffusion_round(State& st, int parts) {
   const auto P = static_cast<std::size_t>(parts);
   const BlockGraph& g = st.graph;
   const std::size_t n = g.size();
-  // Per species, the pairs of parts whose border can carry it: a block holding some on one
+  // Per quantity, the pairs of parts whose border can carry it: a block holding some on one
   // side, touching the other part (a border through soil alone carries no water).
-  std::array<std::vector<std::vector<int>>, 2> around{std::vector<std::vector<int>>(P),
-                                                      std::vector<std::vector<int>>(P)};
+  std::array<std::vector<std::vector<int>>, kQuantities> around;
+  around.fill(std::vector<std::vector<int>>(P));
   std::vector<std::vector<int>> any(P);  // the pairs of parts that share a border
   // Per pair (p < q), the blocks on either side of their border (repeats allowed; blocks that
   // moved away are skipped where they are read).
@@ -136,31 +140,34 @@ bool diffusion_round(State& st, int parts) {
       if (p == q) continue;
       on_border(b, q);
       any[static_cast<std::size_t>(p)].push_back(q), any[static_cast<std::size_t>(q)].push_back(p);
-      for (std::size_t s = 0; s < 2; ++s)
+      for (std::size_t s = 0; s < kQuantities; ++s)
         if (st.weights[b][s] > 0)
           around[s][static_cast<std::size_t>(p)].push_back(q), around[s][static_cast<std::size_t>(q)].push_back(p);
     }
-  for (auto* lists : {&any, &around[0], &around[1]})
+  for (auto* lists : {&any, &around[kSoil], &around[kWater], &around[kWetSoil]})
     for (auto& a : *lists) {
       std::sort(a.begin(), a.end());
       a.erase(std::unique(a.begin(), a.end()), a.end());
     }
-  // Potentials in means of each species.
-  std::array<std::vector<double>, 2> x{std::vector<double>(P, 0), std::vector<double>(P, 0)};
-  for (std::size_t s = 0; s < 2; ++s) {
+  // Potentials in means of each quantity.
+  std::array<std::vector<double>, kQuantities> x;
+  x.fill(std::vector<double>(P, 0));
+  for (std::size_t s = 0; s < kQuantities; ++s) {
     if (!st.balanced[s]) continue;
     std::vector<double> excess(P);
     for (std::size_t p = 0; p < P; ++p) excess[p] = (st.load[p][s] - st.mean[s]) / st.mean[s];
     auto potential = potentials(around[s], excess);
-    if (!potential) return false;
-    x[s] = std::move(*potential);
+    // Some parts' borders do not carry the quantity to the others (the wet soil, which only
+    // some borders cross): only a problem where it is out of balance (flows of zero keep it).
+    if (!potential && !st.within(s, st.limit)) return false;
+    if (potential) x[s] = std::move(*potential);
   }
   std::vector<std::tuple<double, int, int>> pairs;  // (-upstream potential, p, q), p < q
   for (std::size_t p = 0; p < P; ++p)
     for (const int q : any[p])
       if (static_cast<int>(p) < q) {
         double up = -1e300;
-        for (std::size_t s = 0; s < 2; ++s)
+        for (std::size_t s = 0; s < kQuantities; ++s)
           if (st.balanced[s]) up = std::max({up, x[s][p], x[s][static_cast<std::size_t>(q)]});
         pairs.emplace_back(-up, static_cast<int>(p), q);
       }
@@ -169,10 +176,14 @@ bool diffusion_round(State& st, int parts) {
   // the flow nearer to zero; the one with the most neighbours on its new side (net of those it
   // leaves) first, then the largest reduction, then the lowest index. A block moves once a round.
   std::vector<char> moved(n, 0);
-  const auto cost = [](const Load& f) { return f[0] * f[0] + f[1] * f[1]; };
+  const auto cost = [](const Load& f) {
+    double c = 0;
+    for (const double v : f) c += v * v;
+    return c;
+  };
   for (const auto& [up, p, q] : pairs) {
-    Load flow{0, 0};
-    for (std::size_t s = 0; s < 2; ++s) {
+    Load flow{};
+    for (std::size_t s = 0; s < kQuantities; ++s) {
       const auto& a = around[s][static_cast<std::size_t>(p)];
       if (st.balanced[s] && std::binary_search(a.begin(), a.end(), q))
         flow[s] = x[s][static_cast<std::size_t>(p)] - x[s][static_cast<std::size_t>(q)];
@@ -192,7 +203,7 @@ bool diffusion_round(State& st, int parts) {
         const int gain = next_to - st.edges_to(b, from);
         const double sign = from == p ? 1.0 : -1.0;
         Load f = flow;
-        for (std::size_t s = 0; s < 2; ++s)
+        for (std::size_t s = 0; s < kQuantities; ++s)
           if (st.balanced[s]) f[s] -= sign * st.weight(b, s) / st.mean[s];
         const double c = cost(f);
         if (c >= cost(flow)) continue;
@@ -216,7 +227,7 @@ bool diffusion_round(State& st, int parts) {
 }
 
 // Border blocks go to the part holding most of their neighbours when that cuts fewer edges and
-// keeps that part within its limit in every balanced species.
+// keeps that part within its limit in every balanced quantity.
 void refine_cut(State& st, int parts) {
   const BlockGraph& g = st.graph;
   std::vector<int> count(static_cast<std::size_t>(parts), 0);
@@ -236,7 +247,7 @@ void refine_cut(State& st, int parts) {
         count[static_cast<std::size_t>(st.part[static_cast<std::size_t>(g.next[static_cast<std::size_t>(k)])])] = 0;
       if (best == own || gain <= 0) continue;
       bool fits = true;
-      for (std::size_t s = 0; s < 2; ++s)
+      for (std::size_t s = 0; s < kQuantities; ++s)
         if (st.balanced[s] && st.weight(b, s) > 0)
           fits = fits && st.load[static_cast<std::size_t>(best)][s] + st.weight(b, s) <= st.limit[s] * st.mean[s];
       if (fits) st.move(b, best);
@@ -245,7 +256,7 @@ void refine_cut(State& st, int parts) {
 
 }  // namespace
 
-std::optional<Diffused> diffuse_partition(const BlockGraph& graph, const std::vector<std::array<long long, 2>>& weights,
+std::optional<Diffused> diffuse_partition(const BlockGraph& graph, const std::vector<BlockWeight>& weights,
                                           const std::vector<int>& previous, int parts, double target, double accept) {
   const std::size_t n = graph.size();
   if (weights.size() != n || previous.size() != n)
@@ -253,7 +264,7 @@ std::optional<Diffused> diffuse_partition(const BlockGraph& graph, const std::ve
   for (const int p : previous)
     if (p < -1 || p >= parts) throw LibraryError(fmt::format("diffuse_partition: part {} of {} parts", p, parts));
   const auto P = static_cast<std::size_t>(parts);
-  State st{graph, weights, previous, std::vector<Load>(P, Load{0, 0})};
+  State st{graph, weights, previous, std::vector<Load>(P, Load{})};
   if (parts <= 1) return Diffused{std::vector<int>(n, 0), 1, 0};
   // Blocks without a part join the part most of their neighbours are in, repeatedly (a
   // block reached only through such blocks waits for them); any left (no block around has a
@@ -276,16 +287,17 @@ std::optional<Diffused> diffuse_partition(const BlockGraph& graph, const std::ve
   for (int& p : st.part)
     if (p < 0) p = 0;
   for (std::size_t b = 0; b < n; ++b)
-    for (std::size_t s = 0; s < 2; ++s) st.load[static_cast<std::size_t>(st.part[b])][s] += st.weight(b, s);
-  for (std::size_t s = 0; s < 2; ++s) {
+    for (std::size_t s = 0; s < kQuantities; ++s) st.load[static_cast<std::size_t>(st.part[b])][s] += st.weight(b, s);
+  for (std::size_t s = 0; s < kQuantities; ++s) {
     double total = 0;
     for (const Load& l : st.load) total += l[s];
     st.mean[s] = total / static_cast<double>(parts);
     st.balanced[s] = total >= 64.0 * parts;
-    // Blocks move whole: half the largest block above the mean where that is more than the target.
+    // Blocks move whole: half the largest block above the mean where that is more than the target
+    // (or the quantity's tolerance, partition.hpp).
     double block = 0;
     for (std::size_t b = 0; b < n; ++b) block = std::max(block, st.weight(b, s));
-    st.limit[s] = st.balanced[s] ? std::max(target, 1 + block / (2 * st.mean[s])) : 0;
+    st.limit[s] = st.balanced[s] ? std::max({target, kTolerance[s], 1 + block / (2 * st.mean[s])}) : 0;
     st.accept[s] = std::max(st.limit[s], accept);
   }
   // Rounds until balanced: each carries most of the flow; the blocks' sizes leave a remainder.
@@ -298,6 +310,45 @@ std::optional<Diffused> diffuse_partition(const BlockGraph& graph, const std::ve
   Diffused out{std::move(st.part), st.imbalance(), 0};
   for (std::size_t b = 0; b < n; ++b) out.moved += previous[b] >= 0 && previous[b] != out.part[b];
   return out;
+}
+
+namespace {
+
+// Every quantity with at least 64 particles a part within its tolerance (partition.hpp) of its
+// mean, plus its largest block (blocks are whole), on every part: what METIS promises.
+bool within_tolerance(const std::vector<BlockWeight>& weights, const std::vector<int>& part, int parts) {
+  std::vector<BlockWeight> load(static_cast<std::size_t>(parts), BlockWeight{});
+  BlockWeight total{}, block{};
+  for (std::size_t b = 0; b < weights.size(); ++b)
+    for (std::size_t q = 0; q < kQuantities; ++q) {
+      load[static_cast<std::size_t>(part[b])][q] += weights[b][q];
+      total[q] += weights[b][q];
+      block[q] = std::max(block[q], weights[b][q]);
+    }
+  for (std::size_t q = 0; q < kQuantities; ++q) {
+    if (total[q] < 64LL * parts) continue;
+    const double mean = static_cast<double>(total[q]) / parts;
+    for (const BlockWeight& l : load)
+      if (static_cast<double>(l[q]) > kTolerance[q] * mean + static_cast<double>(block[q])) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<int> fresh_partition(const BlockGraph& graph, const std::vector<BlockWeight>& weights, int parts,
+                                 double target, double accept) {
+  if (std::none_of(weights.begin(), weights.end(), [](const BlockWeight& w) { return w[kWetSoil] > 0; }))
+    return partition_blocks(graph, weights, parts);
+  for (const bool bisection : {false, true}) {
+    std::vector<int> part = partition_blocks(graph, weights, parts, bisection);
+    if (within_tolerance(weights, part, parts)) return part;
+    if (auto diffused = diffuse_partition(graph, weights, part, parts, target, accept))
+      return std::move(diffused->part);
+  }
+  std::vector<BlockWeight> dry = weights;
+  for (BlockWeight& w : dry) w[kWetSoil] = 0;
+  return partition_blocks(graph, dry, parts);
 }
 
 }  // namespace suite::mpm2grid

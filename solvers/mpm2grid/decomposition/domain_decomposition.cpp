@@ -196,51 +196,59 @@ void DomainDecomposition<Dim>::migrate(Particles<Dim>& water, Particles<Dim>& so
 }
 
 template <int Dim>
-long long DomainDecomposition<Dim>::largest_block(const Particles<Dim>& P) const {
+std::unordered_map<BlockOwners::Key, std::array<long long, 2>> DomainDecomposition<Dim>::home_counts(
+    const Particles<Dim>& water, const Particles<Dim>& soil) const {
   // The particles come in runs with one home block (group order, transfer/particle_order.hpp):
   // a run's count is added once to its block's.
-  std::unordered_map<BlockOwners::Key, long long> count;
-  long long largest = 0, run = 0;
-  BlockOwners::Key run_key = 0;
-  const auto flush = [&] {
-    if (run > 0) largest = std::max(largest, count[run_key] += run);
-  };
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    const auto key = BlockGrid<Dim>::key(home(P.x[p]));
-    if (key != run_key) flush(), run = 0, run_key = key;
-    ++run;
+  std::unordered_map<BlockOwners::Key, std::array<long long, 2>> count;
+  const std::array<const Particles<Dim>*, 2> species{&soil, &water};
+  for (std::size_t s = 0; s < 2; ++s) {
+    const Particles<Dim>& P = *species[s];
+    long long run = 0;
+    BlockOwners::Key run_key = 0;
+    const auto flush = [&] {
+      if (run > 0) count[run_key][s] += run;
+    };
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      const auto key = BlockGrid<Dim>::key(home(P.x[p]));
+      if (key != run_key) flush(), run = 0, run_key = key;
+      ++run;
+    }
+    flush();
   }
-  flush();
-  return largest;
+  return count;
 }
 
 template <int Dim>
 bool DomainDecomposition<Dim>::balance(long long step, Particles<Dim>& water, Particles<Dim>& soil, bool force) {
   if (!force) {
     if (s_.check_every <= 0 || step % s_.check_every != 0) return false;
-    // Per species (soil, water): this rank's particles and its largest block's (the particles
-    // whose home it is), every rank's in one exchange.
-    const std::array<const Particles<Dim>*, 2> species{&soil, &water};
-    std::vector<long long> mine;
-    for (const auto* P : species) mine.push_back(static_cast<long long>(P->size()));
-    for (const auto* P : species) mine.push_back(largest_block(*P));
+    // Per quantity (partition.hpp): this rank's work and its largest block's, every rank's in
+    // one exchange.
+    std::vector<long long> mine(2 * kQuantities, 0);
+    for (const auto& [key, soil_water] : home_counts(water, soil)) {
+      const BlockWeight w = weight(soil_water);
+      for (std::size_t q = 0; q < kQuantities; ++q)
+        mine[q] += w[q], mine[kQuantities + q] = std::max(mine[kQuantities + q], w[q]);
+    }
     const auto all = wait_.time([&] { return all_gather(comm_, mine); });
-    double worst = 1;
+    std::array<double, kQuantities> worst{1, 1, 1};
     bool due = false;
-    for (std::size_t s = 0; s < 2; ++s) {
+    for (std::size_t s = 0; s < kQuantities; ++s) {
       long long total = 0, most = 0, block = 0;
-      for (const auto& r : all) total += r[s], most = std::max(most, r[s]), block = std::max(block, r[2 + s]);
-      // A species too small to spread (fewer than 64 particles a rank) is no measure of the load.
+      for (const auto& r : all) total += r[s], most = std::max(most, r[s]), block = std::max(block, r[kQuantities + s]);
+      // A quantity too small to spread (fewer than 64 particles a rank) is no measure of the load.
       if (total < 64LL * comm_.size()) continue;
       const double mean = static_cast<double>(total) / comm_.size(), ratio = static_cast<double>(most) / mean;
-      worst = std::max(worst, ratio);
+      worst[s] = ratio;
       // Due above the threshold, unless the excess is within one block: no partition of whole
       // blocks does much better, and repartitioning then would repeat at every check (example 2
       // at 0.25 m on 8 ranks, blocks of up to 64 particles against 226 water particles a rank:
       // 45 repartitions in 3 s).
-      due = due || (ratio > s_.imbalance && static_cast<double>(most) - mean > static_cast<double>(block));
+      due = due || (ratio > s_.threshold(s) && static_cast<double>(most) - mean > static_cast<double>(block));
     }
-    stats_.imbalance = worst;
+    stats_.imbalance = std::max(worst[kSoil], worst[kWater]);
+    stats_.wet_soil_imbalance = worst[kWetSoil];
     if (!due) return false;
     ++stats_.rebalances;
   }
@@ -261,9 +269,7 @@ void DomainDecomposition<Dim>::partition(const Particles<Dim>& water, const Part
   BlockGrid<Dim> touched(grid_->spacing());
   touch_blocks(water, touched);
   touch_blocks(soil, touched);
-  std::unordered_map<BlockOwners::Key, std::array<long long, 2>> homes;
-  for (const auto& x : soil.x) ++homes[BlockGrid<Dim>::key(home(x))][0];
-  for (const auto& x : water.x) ++homes[BlockGrid<Dim>::key(home(x))][1];
+  const auto homes = home_counts(water, soil);
   std::vector<Entry> mine;
   mine.reserve(touched.blocks());
   for (std::size_t b = 0; b < touched.blocks(); ++b) {
@@ -280,13 +286,13 @@ void DomainDecomposition<Dim>::partition(const Particles<Dim>& water, const Part
     }
   std::vector<BlockOwners::Key> keys;
   std::vector<Index<Dim>> coords;
-  std::vector<std::array<long long, 2>> weights;
+  std::vector<BlockWeight> weights;
   std::vector<int> previous;
   std::vector<long long> work;
   for (const auto& [key, w] : blocks) {
     keys.push_back(key);
     coords.push_back(BlockGrid<Dim>::unkey(key));
-    weights.push_back(w);
+    weights.push_back(weight(w));
     previous.push_back(owners_.owner(key));
     work.push_back(w[0] + w[1]);
   }
@@ -306,7 +312,9 @@ void DomainDecomposition<Dim>::partition(const Particles<Dim>& water, const Part
         std::copy(diffused->part.begin(), diffused->part.end(), ranks.begin());
         ranks.back() = 1;
       } else {
-        const auto parts = keep_ranks(partition_blocks(graph, weights, comm_.size()), previous, work, comm_.size());
+        const auto parts =
+            keep_ranks(fresh_partition(graph, weights, comm_.size(), s_.diffusion_target(), s_.diffusion_accept()),
+                       previous, work, comm_.size());
         std::copy(parts.begin(), parts.end(), ranks.begin());
       }
     } catch (const std::exception& e) {

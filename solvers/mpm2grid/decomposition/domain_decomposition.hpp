@@ -11,24 +11,27 @@
 //                     species' velocities and the water's mass (the soil's saturation reads it);
 //   migrate()         after the particles moved: each goes to the rank owning its new home block.
 // balance() measures the load every `check_every` steps: the particle counts of each species per
-// rank (deterministic, unlike timings, so a restart repeats the same decisions bit for bit).
-// When the most loaded rank holds more than `imbalance` times the mean of a species, and more
-// than the largest block of that species above it (no partition of whole blocks does much
-// better than one block), blocks on the ranks' borders move between neighbouring ranks until
-// every species is within a third of that margin of its mean, or half a block
-// (diffuse_partition.hpp); where that does not come within half the margin (and for the first
-// distribution, or with `repartition = fresh`) the blocks in use are partitioned afresh with
-// METIS (partition.hpp), each part kept on the rank that held most of its work. Then the
-// particles move to their new owners.
+// rank, and with `balance_wet_soil` the wet soil (partition.hpp), each from the particles whose
+// home blocks a rank owns (deterministic, unlike timings, so a restart repeats the same
+// decisions bit for bit). When the most loaded rank holds more than `imbalance` times the mean
+// of a quantity (the wet soil: threshold()), and more than the largest block of it above it
+// (no partition of whole blocks does much better than one block), blocks on the ranks' borders
+// move between neighbouring ranks until every quantity is within a third of that margin of its
+// mean (the wet soil: its tolerance), or half a block (diffuse_partition.hpp); where that does
+// not come within half the margin (and for the first distribution, or with `repartition =
+// fresh`) the blocks in use are partitioned afresh with METIS (fresh_partition), each part kept
+// on the rank that held most of its work. Then the particles move to their new owners.
 // No rank holds the whole grid or solution: only its blocks, its ghosts and the owner table
 // (one integer per block).
 #include <algorithm>
 #include <array>
+#include <unordered_map>
 #include <vector>
 
 #include "core/mpi/comm.hpp"
 #include "solvers/mpm2grid/decomposition/block_owners.hpp"
 #include "solvers/mpm2grid/decomposition/halo_exchange.hpp"
+#include "solvers/mpm2grid/decomposition/partition.hpp"
 #include "solvers/mpm2grid/decomposition/wait_clock.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
@@ -39,10 +42,17 @@ struct DecompositionSettings {
   int check_every = 20;    // steps between load measurements
   double imbalance = 1.05;  // rebalance above this ratio of the largest to the mean particle count
   bool diffuse = true;     // rebalance by moving border blocks (false: a fresh METIS partition)
+  // Also balance the wet soil (partition.hpp: the consistent drag's matrix rows), measured and
+  // partitioned as a third quantity beside the particle counts.
+  bool balance_wet_soil = false;
   // What a diffusive rebalance aims at: a third of the margin (1.0167 for 1.05), at least
   // METIS's 1%; and accepts: half the margin (a fresh partition moves most particles).
   double diffusion_target() const { return std::max(1.01, 1 + (imbalance - 1) / 3); }
   double diffusion_accept() const { return std::max(diffusion_target(), 1 + (imbalance - 1) / 2); }
+  // The load above which quantity q (partition.hpp) is out of balance: `imbalance`, or for a
+  // quantity a partition may leave further from its mean (kTolerance: the wet soil), twice that
+  // margin (so that what the partition leaves does not rebalance at the next check).
+  double threshold(std::size_t q) const { return std::max(imbalance, 1 + 2 * (kTolerance[q] - 1)); }
 };
 
 // What this rank did, summed since the run (or its restart) began.
@@ -57,7 +67,8 @@ struct DecompositionStats {
   long long migration_messages = 0;  // point-to-point messages of those (one per rank receiving some)
   long long migrated = 0;         // particles sent to other ranks
   long long claimed_blocks = 0;   // blocks first reached between partitions (counted on every rank)
-  double imbalance = 1;           // at the last measurement
+  double imbalance = 1;           // at the last measurement: the particles' (soil's or water's)
+  double wet_soil_imbalance = 1;  // and the wet soil's, where it is balanced
 };
 
 template <int Dim>
@@ -122,8 +133,13 @@ class DomainDecomposition {
 
  private:
   Index<Dim> home(const Vec<Dim>& x) const;
-  // The most particles of P that one block is home to.
-  long long largest_block(const Particles<Dim>& P) const;
+  // The soil and water particles of this rank per block they are home to.
+  std::unordered_map<BlockOwners::Key, std::array<long long, 2>> home_counts(const Particles<Dim>& water,
+                                                                             const Particles<Dim>& soil) const;
+  // A block's work (partition.hpp) from its soil and water particles.
+  BlockWeight weight(const std::array<long long, 2>& soil_water) const {
+    return {soil_water[0], soil_water[1], s_.balance_wet_soil ? wet_soil(soil_water[0], soil_water[1]) : 0};
+  }
   // `first`: the first distribution (METIS, whatever the settings).
   void partition(const Particles<Dim>& water, const Particles<Dim>& soil, bool first);
 

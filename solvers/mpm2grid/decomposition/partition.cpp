@@ -43,10 +43,10 @@ BlockGraph block_graph(const std::vector<Index<Dim>>& blocks) {
   return g;
 }
 
-std::vector<int> partition_blocks(const BlockGraph& graph, const std::vector<std::array<long long, 2>>& weights,
-                                  int parts) {
+std::vector<int> partition_blocks(const BlockGraph& graph, const std::vector<BlockWeight>& weights, int parts,
+                                  bool bisection) {
   const std::size_t n = graph.size();
-  if (weights.size() != n) throw LibraryError("partition_blocks: one weight pair per block expected");
+  if (weights.size() != n) throw LibraryError("partition_blocks: one weight per block expected");
   std::vector<int> part(n, 0);
   if (parts <= 1 || n == 0) return part;
   if (n <= static_cast<std::size_t>(parts)) {
@@ -54,33 +54,32 @@ std::vector<int> partition_blocks(const BlockGraph& graph, const std::vector<std
     return part;
   }
   std::vector<idx_t> xadj(graph.start.begin(), graph.start.end()), adjncy(graph.next.begin(), graph.next.end());
-  // The constraints: the species present anywhere (one weight of 1 per block if none is).
-  std::array<long long, 2> total{0, 0};
-  for (const auto& w : weights) total[0] += w[0], total[1] += w[1];
-  std::vector<int> species;
-  for (int s = 0; s < 2; ++s)
-    if (total[static_cast<std::size_t>(s)] > 0) species.push_back(s);
-  idx_t ncon = std::max<idx_t>(1, static_cast<idx_t>(species.size()));
+  // The constraints: the quantities present anywhere (one weight of 1 per block if none is).
+  BlockWeight total{};
+  for (const auto& w : weights)
+    for (std::size_t q = 0; q < kQuantities; ++q) total[q] += w[q];
+  std::vector<std::size_t> present;
+  for (std::size_t q = 0; q < kQuantities; ++q)
+    if (total[q] > 0) present.push_back(q);
+  idx_t ncon = std::max<idx_t>(1, static_cast<idx_t>(present.size()));
   std::vector<idx_t> vwgt(n * static_cast<std::size_t>(ncon), 1);
-  if (!species.empty())
+  if (!present.empty())
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t c = 0; c < species.size(); ++c)
-        vwgt[i * species.size() + c] = static_cast<idx_t>(weights[i][static_cast<std::size_t>(species[c])]);
-  // 1% imbalance per species: a rank's share above the mean is time every other rank waits in
-  // the halo exchanges (METIS's default 5% left example 2 nearly that far out of balance:
-  // docs/mpm2grid.md, "Over several ranks"; blocks of 16 to 64 particles leave METIS room to
-  // meet 1%).
-  std::vector<real_t> ubvec(static_cast<std::size_t>(ncon), static_cast<real_t>(1.01));
+      for (std::size_t c = 0; c < present.size(); ++c)
+        vwgt[i * present.size() + c] = static_cast<idx_t>(weights[i][present[c]]);
+  std::vector<real_t> ubvec(static_cast<std::size_t>(ncon), static_cast<real_t>(kTolerance[kSoil]));
+  for (std::size_t c = 0; c < present.size(); ++c) ubvec[c] = static_cast<real_t>(kTolerance[present[c]]);
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
   options[METIS_OPTION_SEED] = 1;
   idx_t nvtxs = static_cast<idx_t>(n), nparts = parts, objval = 0;
   std::vector<idx_t> result(n, 0);
-  const int status = METIS_PartGraphKway(&nvtxs, &ncon, xadj.data(), adjncy.data(), vwgt.data(), nullptr, nullptr,
-                                         &nparts, nullptr, ubvec.data(), options, &objval, result.data());
+  const auto metis = bisection ? METIS_PartGraphRecursive : METIS_PartGraphKway;
+  const int status = metis(&nvtxs, &ncon, xadj.data(), adjncy.data(), vwgt.data(), nullptr, nullptr, &nparts, nullptr,
+                           ubvec.data(), options, &objval, result.data());
   if (status != METIS_OK)
-    throw LibraryError(
-        fmt::format("METIS_PartGraphKway failed (status {}) on {} blocks for {} ranks", status, n, parts));
+    throw LibraryError(fmt::format("METIS_PartGraph{} failed (status {}) on {} blocks for {} ranks",
+                                   bisection ? "Recursive" : "Kway", status, n, parts));
   for (std::size_t i = 0; i < n; ++i) part[i] = static_cast<int>(result[i]);
   return part;
 }

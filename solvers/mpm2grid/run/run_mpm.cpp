@@ -603,6 +603,7 @@ class MpmRun {
     j["rebalance_migrated_particles"] = comm_.sum(st.rebalance_migrated - before.rebalance_migrated);
     j["rebalance_partition_s"] = comm_.max(st.partition_seconds - before.partition_seconds);
     j["imbalance_at_last_check"] = st.imbalance;
+    if (scene_.simulation.decomposition.balance_wet_soil) j["wet_soil_imbalance_at_last_check"] = st.wet_soil_imbalance;
     j["halo_bytes_per_step"] = static_cast<double>(comm_.sum(st.halo_bytes)) * per_step;
     j["halo_messages_per_step"] = static_cast<double>(comm_.sum(st.halo_messages)) * per_step;
     j["migration_messages_per_step"] = static_cast<double>(comm_.sum(st.migration_messages)) * per_step;

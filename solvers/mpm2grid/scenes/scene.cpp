@@ -279,14 +279,18 @@ Scene<Dim> read_scene(const config::Config& cfg) {
   sim.decomposition.check_every = static_cast<int>(dd.integer("check_every", 20, 0, 1000000));
   sim.decomposition.imbalance = dd.number("imbalance", 1.05, Range::at_least(1));
   sim.decomposition.diffuse = dd.choice("repartition", {"diffuse", "fresh"}, "diffuse") == "diffuse";
-  // Read only with the consistent drag, so that other scenes' effective_config.yaml lacks it.
-  if (sim.drag == DragScheme::consistent)
+  // Read only with the consistent drag, so that other scenes' effective_config.yaml lacks them.
+  if (sim.drag == DragScheme::consistent) {
     sim.drag_rows =
         dd.choice("drag_rows", {"owners", "balanced"}, "owners") == "owners" ? DragRows::owners : DragRows::balanced;
-  else if (dd.has("drag_rows"))
-    dd.reject("drag_rows", fmt::format("only the consistent drag has a distributed solve, and this scene has drag: {}; "
-                                       "set drag: consistent or drop decomposition.drag_rows",
-                                       drag));
+    sim.decomposition.balance_wet_soil = dd.get<bool>("balance_wet_soil", false);
+  } else {
+    for (const char* key : {"drag_rows", "balance_wet_soil"})
+      if (dd.has(key))
+        dd.reject(key, fmt::format("only the consistent drag has a distributed solve, and this scene has drag: {}; "
+                                   "set drag: consistent or drop decomposition.{}",
+                                   drag, key));
+  }
   sc.checkpoints = checkpoint::ScheduleSettings::read(root.section_or_empty("checkpoint"), {1000, 1800.0, 2});
   cfg.finish();
   return sc;
