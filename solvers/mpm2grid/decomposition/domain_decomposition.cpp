@@ -232,7 +232,8 @@ bool DomainDecomposition<Dim>::balance(long long step, Particles<Dim>& water, Pa
         mine[q] += w[q], mine[kQuantities + q] = std::max(mine[kQuantities + q], w[q]);
     }
     const auto all = wait_.time([&] { return all_gather(comm_, mine); });
-    std::array<double, kQuantities> worst{1, 1, 1};
+    std::array<double, kQuantities> worst;
+    worst.fill(1);
     bool due = false;
     for (std::size_t s = 0; s < kQuantities; ++s) {
       long long total = 0, most = 0, block = 0;

@@ -49,10 +49,12 @@ struct DecompositionSettings {
   // METIS's 1%; and accepts: half the margin (a fresh partition moves most particles).
   double diffusion_target() const { return std::max(1.01, 1 + (imbalance - 1) / 3); }
   double diffusion_accept() const { return std::max(diffusion_target(), 1 + (imbalance - 1) / 2); }
-  // The load above which quantity q (partition.hpp) is out of balance: `imbalance`, or for a
-  // quantity a partition may leave further from its mean (kTolerance: the wet soil), twice that
-  // margin (so that what the partition leaves does not rebalance at the next check).
-  double threshold(std::size_t q) const { return std::max(imbalance, 1 + 2 * (kTolerance[q] - 1)); }
+  // The load above which quantity q (partition.hpp) is out of balance: `imbalance`; for the wet
+  // soil, which a partition may leave 10% above its mean (kTolerance), at least twice that margin
+  // (so that what the partition leaves does not rebalance at the next check).
+  double threshold(std::size_t q) const {
+    return q == kWetSoil ? std::max(imbalance, 1 + 2 * (kTolerance[q] - 1)) : imbalance;
+  }
 };
 
 // What this rank did, summed since the run (or its restart) began.
