@@ -32,6 +32,12 @@ the particle-steps (water and soil); rank_cost_spread, of the compute per partic
 that is slower over the same work: its core); rank_slowest_same, the share of the compute phases
 (each over 1% of the compute) whose slowest rank is the rank slowest over all of them (1: one
 rank slow everywhere, as a slow core or more work would be; near 1 / ranks: chance).
+On the CPU clock (per_rank cpu_s: the main thread's CPU outside the waits): rank_cpu_spread, the
+most loaded rank's compute CPU over the mean (the work's imbalance without the time off the
+cores); rank_off_core, the share of the compute's wall time that the ranks' main threads were off
+their cores (wall less CPU, over the ranks together; another process, a host's steal);
+rank_off_core_slowest, that share on the rank whose compute took longest. Empty for runs from
+before the CPU clock.
 Then per phase of the step (run.json "step/<phase>", solvers/mpm2grid/model/step_timers.hpp) and
 the two per-step checks outside it ("dt limit", "blow-up check"): ph_<phase>_mean and ph_<phase>_max,
 its seconds over the run, mean and largest over the ranks, and ph_<phase>_wait, the mean over the
@@ -54,7 +60,8 @@ COLUMNS = ["status", "ranks", "steps", "step_s", "step_mean_s", "wall_s", "parti
            "drag_rows_s_mean", "drag_rows_s_max", "drag_exchange_s_mean", "drag_exchange_s_max",
            "drag_krylov_s_mean", "drag_krylov_s_max",
            "rank_compute_spread",
-           "rank_work_spread", "rank_cost_spread", "rank_slowest_same"]
+           "rank_work_spread", "rank_cost_spread", "rank_slowest_same", "rank_cpu_spread", "rank_off_core",
+           "rank_off_core_slowest"]
 STEP_PHASES = ["balance", "grid", "halo plan", "stresses", "p2g water", "halo sum", "p2g soil", "grid solve",
                "boundary", "halo copy", "g2p water", "g2p soil", "outflow", "inlet", "migrate", "bed shear"]
 CHECKS = ["dt limit", "blow-up check"]
@@ -116,9 +123,17 @@ def per_rank_spreads(per_rank):
     slowest = compute.index(max(compute))
     big = [v for v in own.values() if sum(v) > 0.01 * sum(compute)]
     same = sum(v.index(max(v)) == slowest for v in big) / len(big)
-    return {"rank_compute_spread": f"{spread(compute):.4g}", "rank_work_spread": f"{spread(work):.4g}",
-            "rank_cost_spread": f"{spread([c / w for c, w in zip(compute, work)]):.4g}",
-            "rank_slowest_same": f"{same:.3g}"}
+    m = {"rank_compute_spread": f"{spread(compute):.4g}", "rank_work_spread": f"{spread(work):.4g}",
+         "rank_cost_spread": f"{spread([c / w for c, w in zip(compute, work)]):.4g}",
+         "rank_slowest_same": f"{same:.3g}"}
+    cpu_s = per_rank.get("cpu_s")
+    if cpu_s:
+        cpu = [sum(cpu_s[p][r] for p in own if p in cpu_s) for r in range(ranks)]
+        if sum(cpu) > 0:
+            m["rank_cpu_spread"] = f"{spread(cpu):.4g}"
+            m["rank_off_core"] = f"{max(0.0, 1 - sum(cpu) / sum(compute)):.4g}"
+            m["rank_off_core_slowest"] = f"{max(0.0, 1 - cpu[slowest] / compute[slowest]):.4g}"
+    return m
 
 
 def metrics(run, rss_dir=None):

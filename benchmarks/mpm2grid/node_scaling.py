@@ -64,7 +64,27 @@ def rank_spreads(row):
     return (f" Per rank, compute over the run: the slowest {float(row['rank_compute_spread']):.2f}x the mean, "
             f"particle-steps {float(row['rank_work_spread']):.3f}x, compute per particle-step "
             f"{float(row['rank_cost_spread']):.2f}x; that rank is the slowest in "
-            f"{100 * float(row['rank_slowest_same']):.0f}% of the compute phases.")
+            f"{100 * float(row['rank_slowest_same']):.0f}% of the compute phases.{off_core(row)}")
+
+
+def copies_off_core(rows):
+    """How long the ceiling's copies were off their cores (the CPU clock), as a sentence; empty for runs
+    from before it."""
+    if not rows or not all(r.get("rank_off_core") for r in rows):
+        return ""
+    off = [float(r["rank_off_core"]) for r in rows]
+    slowest = max(rows, key=lambda r: num(r, "step_s"))
+    return (f" The copies were off their cores {100 * min(off):.1f}-{100 * max(off):.1f}% of their compute's wall "
+            f"time, the slowest copy {100 * float(slowest['rank_off_core']):.1f}%.")
+
+
+def off_core(row):
+    """The CPU clock's part of rank_spreads' sentence; empty for runs from before it."""
+    if not row.get("rank_cpu_spread"):
+        return ""
+    return (f" On the CPU clock the slowest rank's compute is {float(row['rank_cpu_spread']):.2f}x the mean; the ranks "
+            f"were off their cores {100 * float(row['rank_off_core']):.1f}% of their compute's wall time, the slowest "
+            f"rank {100 * float(row['rank_off_core_slowest']):.1f}%.")
 
 
 def coupled_share(row):
@@ -157,14 +177,14 @@ def report(rows, machines, png):
                                 phase_sum(fast, STEP_PHASES, "wait") / steps_p,
                                 (phase_sum(fast, COMM, "mean") - phase_sum(fast, COMM, "wait")) / steps_p,
                                 phase_sum(fast, ["balance"], "mean") / steps_p]
-            copies = [num(r, "step_s") for r in mine if r["case"] == case and r["kind"] == "copy"
-                      and r["status"] == "completed"]
+            copy_rows = [r for r in mine if r["case"] == case and r["kind"] == "copy" and r["status"] == "completed"]
+            copies = [num(r, "step_s") for r in copy_rows]
             if copies:
                 mean_c, worst_c = statistics.mean(copies), max(copies)
                 out.append("")
                 out.append(f"Ceiling, {len(copies)} pinned one-rank copies at once: step phase {min(copies):.3g}-"
                            f"{worst_c:.3g} s (mean {mean_c:.3g}); lone one-rank run over the mean copy "
-                           f"**{t1 / mean_c:.2f}**, over the slowest **{t1 / worst_c:.2f}**.")
+                           f"**{t1 / mean_c:.2f}**, over the slowest **{t1 / worst_c:.2f}**." + copies_off_core(copy_rows))
                 if lease == leases[-1] or case == "ex2":
                     curves.setdefault(f"{lease} ceiling", {})[case] = (t1 / mean_c, t1 / worst_c)
             top = max(ranks)

@@ -127,7 +127,7 @@ for d, ranks in ((one, 1), (two, second_ranks)):
     with open(os.path.join(d, "run.json")) as f:
         phases = json.load(f)["phases"]
     step = phases["step"]
-    parts = {k[5:]: v for k, v in phases.items() if k.startswith("step/") and not k.endswith("/wait")}
+    parts = {k[5:]: v for k, v in phases.items() if k.startswith("step/") and k.count("/") == 1}
     expected = {"grid", "stresses", "p2g water", "p2g soil", "grid solve", "boundary", "g2p water", "g2p soil"}
     if ranks > 1:
         expected |= {"halo plan", "halo sum", "halo copy", "migrate"}
@@ -160,6 +160,26 @@ for d, ranks, record in ((one, 1, records[0]), (two, second_ranks, records[1])):
         close = lambda a, b: abs(a - b) <= 1e-12 + 1e-9 * abs(b)
         assert len(seconds) == ranks and close(min(seconds), v["min_s"]) and close(max(seconds), v["max_s"]) and \
             close(sum(seconds) / ranks, v["mean_s"]), f"{d}/run.json: per_rank step_s[{name}] = {seconds}, phases {v}"
+# The CPU clock (step/<phase>/cpu, per_rank cpu_s: the main thread's CPU time in a phase outside
+# its MPI waits). One thread's CPU time cannot run ahead of the wall clock, so per rank and phase
+# it lies between 0 and the phase's wall time less its waits. Each clock read sits inside the
+# span it is compared with; what is left is the CPU time between a wait's wall-clock and
+# CPU-clock reads (about 1 us a wait, a few waits a step: under 0.1 ms a step) and the clock
+# reads' own rounding, hence 1e-4 s a step and 1e-6 of the phase.
+for d, ranks, record in ((one, 1, records[0]), (two, second_ranks, records[1])):
+    per_rank, steps = record["per_rank"], record["phases"]["step"]["calls"]
+    assert set(per_rank["cpu_s"]) == set(per_rank["step_s"]), f"{d}/run.json: cpu_s for {sorted(per_rank['cpu_s'])}"
+    for name, cpu in per_rank["cpu_s"].items():
+        wall, wait = per_rank["step_s"][name], per_rank["wait_s"][name]
+        for r in range(ranks):
+            slack = 1e-4 * steps + 1e-6 * wall[r]
+            assert -slack <= cpu[r] <= wall[r] - wait[r] + slack, (
+                f"{d}/run.json: rank {r}'s step/{name}: {cpu[r]:.6f} s on the CPU, {wall[r]:.6f} s of wall time "
+                f"of which {wait[r]:.6f} s waiting")
+    own = sum(sum(per_rank["step_s"][p]) - sum(per_rank["wait_s"][p]) for p in per_rank["step_s"])
+    cpu = sum(sum(v) for v in per_rank["cpu_s"].values())
+    assert cpu > 0, f"{d}/run.json: no CPU time in the step's phases"
+    print(f"{ranks} rank(s): the phases' own work {own:.4f} rank-s of wall time, {cpu:.4f} on the CPU")
 if records[0]["phases"]["step"]["calls"] == records[1]["phases"]["step"]["calls"]:
     for k in ("water_particle_steps", "soil_particle_steps", "grid_block_steps"):
         a, b = sum(records[0]["per_rank"][k]), sum(records[1]["per_rank"][k])

@@ -5,7 +5,10 @@
 // run.json reports them as phases "step/<name>" and "step/<name>/wait" with min, mean and max
 // over the ranks (core/run/phase_timers.hpp), so a scaling table explains itself: a phase whose
 // max is far above its mean is imbalanced, a phase whose wait is most of its time waits for the
-// slowest rank.
+// slowest rank. And "step/<name>/cpu": the CPU seconds of the rank's main thread in the phase
+// outside its waits. A phase's own wall time (seconds - waited) less that CPU time is the time
+// the thread was off its core (another process, a virtual machine's host): where the slowest
+// rank of a phase spent its extra time off its core, the partition did not give it more work.
 #include <array>
 #include <chrono>
 #include <cstddef>
@@ -41,10 +44,12 @@ inline constexpr std::array<const char*, kStepPhases> kStepPhaseNames{
 struct StepTimes {
   std::array<double, kStepPhases> seconds{};  // per phase, summed over the steps
   std::array<double, kStepPhases> waited{};   // of those, blocked in MPI calls
+  std::array<double, kStepPhases> cpu{};      // the main thread's CPU seconds outside those calls
 };
 
-// Adds the time of one scope to a phase, and what a wait clock (nullptr on one rank) counted
-// meanwhile to the phase's wait.
+// Adds the time of one scope to a phase, what a wait clock (nullptr on one rank) counted
+// meanwhile to the phase's wait, and the calling thread's CPU time outside the wait clock's
+// calls to the phase's cpu. Constructed and destroyed on the rank's main thread.
 class StepPhaseScope {
  public:
   StepPhaseScope(StepTimes& times, StepPhase phase, const WaitClock* wait)
@@ -52,10 +57,17 @@ class StepPhaseScope {
         phase_(static_cast<std::size_t>(phase)),
         wait_(wait),
         wait_start_(wait ? wait->seconds : 0.0),
-        start_(std::chrono::steady_clock::now()) {}
-  ~StepPhaseScope() {
+        wait_cpu_start_(wait ? wait->cpu : 0.0),
+        start_(std::chrono::steady_clock::now()),
+        cpu_start_(thread_cpu_seconds()) {}
+  ~StepPhaseScope() {  // the CPU span inside the wall span
+    double cpu = thread_cpu_seconds() - cpu_start_;
     times_.seconds[phase_] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    if (wait_) times_.waited[phase_] += wait_->seconds - wait_start_;
+    if (wait_) {
+      times_.waited[phase_] += wait_->seconds - wait_start_;
+      cpu -= wait_->cpu - wait_cpu_start_;
+    }
+    times_.cpu[phase_] += cpu;
   }
   StepPhaseScope(const StepPhaseScope&) = delete;
   StepPhaseScope& operator=(const StepPhaseScope&) = delete;
@@ -65,7 +77,9 @@ class StepPhaseScope {
   std::size_t phase_;
   const WaitClock* wait_;
   double wait_start_;
+  double wait_cpu_start_;
   std::chrono::steady_clock::time_point start_;
+  double cpu_start_;
 };
 
 }  // namespace suite::mpm2grid

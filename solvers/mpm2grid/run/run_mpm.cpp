@@ -497,9 +497,9 @@ class MpmRun {
               p_.files);
   }
 
-  // run.json with the step's phases (model/step_timers.hpp) beside the run's: "step/<phase>"
-  // and, over several ranks, "step/<phase>/wait" (blocked in MPI), each with this run's steps
-  // as its calls. COLLECTIVE.
+  // run.json with the step's phases (model/step_timers.hpp) beside the run's: "step/<phase>",
+  // over several ranks "step/<phase>/wait" (blocked in MPI), and "step/<phase>/cpu" (the main
+  // thread's CPU outside the waits), each with this run's steps as its calls. COLLECTIVE.
   void write_record(const std::string& status) {
     PhaseTimers all = timers_;
     const StepTimes& t = sim_.step_times();
@@ -509,6 +509,7 @@ class MpmRun {
       if (t.seconds[k] == 0) continue;  // a phase this rank never ran (the halo's on one rank)
       all.add(name, t.seconds[k], steps);
       if (t.waited[k] > 0) all.add(name + "/wait", t.waited[k], steps);
+      all.add(name + "/cpu", t.cpu[k], steps);
     }
     record_.write(out_ / "run.json", all, status);
   }
@@ -555,15 +556,18 @@ class MpmRun {
     record_per_rank();
   }
 
-  // Every rank's particle-steps of each species and seconds in each step phase (and of those
-  // waiting in MPI): whether the slowest rank of a phase had more work, or took longer over the
-  // same work (its core), and whether it is the same rank in every phase. COLLECTIVE.
+  // Every rank's particle-steps of each species and seconds in each step phase (of those waiting
+  // in MPI, and the main thread's CPU seconds outside the waits): whether the slowest rank of a
+  // phase had more work, or took longer over the same work (its core: off it, when its wall time
+  // outside the waits exceeds its CPU time), and whether it is the same rank in every phase.
+  // COLLECTIVE.
   void record_per_rank() {
     const StepTimes& t = sim_.step_times();
     std::vector<double> mine{static_cast<double>(particle_steps_[0]), static_cast<double>(particle_steps_[1]),
                              static_cast<double>(grid_block_steps_)};
     mine.insert(mine.end(), t.seconds.begin(), t.seconds.end());
     mine.insert(mine.end(), t.waited.begin(), t.waited.end());
+    mine.insert(mine.end(), t.cpu.begin(), t.cpu.end());
     const auto n = mine.size();
     std::vector<double> all(n * static_cast<std::size_t>(comm_.size()));
     SUITE_MPI_CHECK(MPI_Allgather(mine.data(), static_cast<int>(n), MPI_DOUBLE, all.data(), static_cast<int>(n),
@@ -582,6 +586,7 @@ class MpmRun {
       if (*std::max_element(seconds.begin(), seconds.end()) == 0) continue;  // a phase no rank ran
       j["step_s"][kStepPhaseNames[k]] = seconds;
       j["wait_s"][kStepPhaseNames[k]] = column(3 + kStepPhases + k);
+      j["cpu_s"][kStepPhaseNames[k]] = column(3 + 2 * kStepPhases + k);
     }
   }
 
