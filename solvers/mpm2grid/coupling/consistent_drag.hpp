@@ -22,19 +22,22 @@
 // The matrix is preallocated from the stencil: a node couples only to nodes within 3 spacings
 // per axis (two overlapping 4-wide stencils).
 // One matrix serves the Dim components: it is assembled once per call and solved for Dim
-// right-hand sides. Each rank adds its own soil particles' drag terms; entries for rows another
-// rank holds travel through PETSc's assembly (no rank ever holds the global vector).
+// right-hand sides. Each rank adds its own soil particles' drag terms; the rows another rank
+// holds are summed here row by row and sent to that rank (decomposition/exchange.hpp's
+// all_to_all), which adds them to its own, so PETSc's assembly has no entries to move (its stash
+// sent every entry with its indices, found the receivers with a collective and sorted the
+// entries on both sides: on 2 ranks 2.5-4.7 times the cost of this exchange, docs/mpm2grid.md,
+// "Benchmarks"). No rank ever holds the global vector.
 //
 // Which rank holds a row in the solve (DragRows): the coupled nodes gather where the water meets
 // the soil, in few of the particles' parts (over the first 60 steps of example 2 at h = 0.025 m
 // on 16 ranks one rank owns 507 of the 1,019), and every rank waits for the busiest at each
 // Krylov iteration's reductions. `owners` (the default) solves each row on the node's owner (no
 // traffic beyond the solve's own). `balanced` gives each rank an equal contiguous share of the
-// global numbering, whoever owns the nodes: the owners still assemble their nodes' rows (those
-// for another rank travel through PETSc's assembly) and hold their right-hand sides and
-// velocities, which reach the solve's layout and come back by one VecScatter. On 2 ranks, where
-// one owns every coupled node, the shipped rows cost more than the halved solve saved
-// (docs/mpm2grid.md, "Benchmarks"); at 16 ranks it is unmeasured. The global numbering and so the
+// global numbering, whoever owns the nodes: the owners still assemble their nodes' rows (and
+// send those another rank holds) and hold their right-hand sides and velocities, which reach the
+// solve's layout and come back by one VecScatter (docs/mpm2grid.md, "Benchmarks", for what each
+// costs on 2 ranks; at 16 ranks it is unmeasured). The global numbering and so the
 // matrix are the same in both; the Krylov iterations differ by round-off (the reductions' order
 // follows the layout), and their number with a preconditioner that works on each rank's rows.
 // The other way to spread the rows, the nodes themselves over the ranks, is the partition's:
@@ -115,9 +118,10 @@ struct SolveStats {
   int reason = 0;            // PETSc's KSPConvergedReason of the component with the most iterations
   std::string reason_name;   // its name, e.g. "CONVERGED_RTOL"
   // This rank's wall seconds: computing and inserting its rows (with the vectors' setup and the
-  // preallocation; with DragRows::balanced the counts' scatter too), PETSc's assembly (the rows for other ranks sent,
-  // theirs received, and the waiting for the slowest: a rank with few rows waits here), and the
-  // Krylov solves of the Dim components with their right-hand sides, solutions and scatters.
+  // preallocation; with DragRows::balanced the counts' scatter too), the assembly's exchange
+  // (the rows for other ranks sent, theirs received and added, PETSc's assembly, and the waiting
+  // for the slowest: a rank with few rows waits here), and the Krylov solves of the Dim
+  // components with their right-hand sides, solutions and scatters.
   double rows_s = 0, exchange_s = 0, krylov_s = 0;
 };
 
