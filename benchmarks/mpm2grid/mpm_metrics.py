@@ -11,8 +11,7 @@ each series interval by its steps, dt from the row), s_per_step, ns_per_particle
 (step_s / (steps x particles_mean), wall time on the slowest rank; multiply by ranks for
 core-ns), the decomposition block (halo and migration bytes per step summed over ranks,
 migrated particles per step, rebalances, and at the end of the list halo and migration messages
-per step summed over ranks; empty on 1 rank and on stopped runs, which write no
-decomposition block), drag_ksp_max_iterations (consistent drag only, completed runs only),
+per step summed over ranks; empty on 1 rank), drag_ksp_max_iterations (consistent drag only),
 summary.json values (outflow water volume, eroded soil volume, water front, end time; empty
 unless completed), peak RSS of each rank (kB, max and sum over ranks) when RSS_DIR is given, the
 largest kinetic energy in series.csv, dt_first / dt_last / dt_largest: the dt column of series.csv

@@ -43,7 +43,8 @@ struct DecompositionSettings {
   double imbalance = 1.05;  // rebalance above this ratio of the largest to the mean particle count
   bool diffuse = true;     // rebalance by moving border blocks (false: a fresh METIS partition)
   // Also balance the wet soil (partition.hpp: the consistent drag's matrix rows), measured and
-  // partitioned as a third quantity beside the particle counts.
+  // partitioned as a third quantity beside the particle counts. A scene with the consistent drag
+  // sets it unless it says otherwise (scene.cpp); the other drags have no use for it.
   bool balance_wet_soil = false;
   // What a diffusive rebalance aims at: a third of the margin (1.0167 for 1.05), at least
   // METIS's 1%; and accepts: half the margin (a fresh partition moves most particles).

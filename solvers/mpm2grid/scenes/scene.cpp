@@ -283,7 +283,7 @@ Scene<Dim> read_scene(const config::Config& cfg) {
   if (sim.drag == DragScheme::consistent) {
     sim.drag_rows =
         dd.choice("drag_rows", {"owners", "balanced"}, "owners") == "owners" ? DragRows::owners : DragRows::balanced;
-    sim.decomposition.balance_wet_soil = dd.get<bool>("balance_wet_soil", false);
+    sim.decomposition.balance_wet_soil = dd.get<bool>("balance_wet_soil", true);
   } else {
     for (const char* key : {"drag_rows", "balance_wet_soil"})
       if (dd.has(key))
