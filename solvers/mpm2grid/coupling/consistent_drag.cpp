@@ -369,7 +369,7 @@ double ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles
                                      const std::vector<double>& soil_drag, const NodeFields<Dim>& soil_nodes,
                                      const NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering,
                                      const std::vector<long>& owned_slots, const Layouts& layouts,
-                                     const std::vector<int>* groups) {
+                                     const std::vector<int>* groups, WaitClock* wait) {
   constexpr int kNodes = BlockGrid<Dim>::kNodes, kWindow = Windows<Dim>::kSize;
   Petsc& ps = *petsc_;
   ::Mat& matrix = ps.matrix;
@@ -522,7 +522,7 @@ double ConsistentDrag<Dim>::assemble(const BlockGrid<Dim>& grid, const Particles
     // The rows from the other ranks, by source rank (so the sums' order does not depend on the
     // messages' timing), each row's run of terms added at once. Then no rank has entries for
     // another's rows, and PETSc's assembly skips its stash.
-    const auto arrived = all_to_all(comm_, shipped);
+    const auto arrived = all_to_all(comm_, shipped, wait);
     for (std::size_t r = 0; r < arrived.size(); ++r) {
       if (static_cast<int>(r) == me) continue;
       const std::vector<ShippedTerm>& in = arrived[r];
@@ -545,13 +545,15 @@ template <int Dim>
 SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particles<Dim>& soil,
                                       const std::vector<double>& soil_drag, NodeFields<Dim>& soil_nodes,
                                       NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering,
-                                      const std::vector<int>* groups) {
+                                      const std::vector<int>* groups, WaitClock* wait) {
   const std::size_t nodes = grid.nodes();
   // The owned slots in global order, and the checks. Every rank takes part in the same
   // collectives whatever it finds, and a problem on any rank stops every rank here rather than
   // leaving the others waiting inside PETSc.
   const long owned = numbering.owned;
-  const Layouts layouts(comm_.all_gather(static_cast<long long>(owned)), rows_);
+  WaitClock unused;
+  WaitClock& waited = wait ? *wait : unused;
+  const Layouts layouts(waited.time([&] { return comm_.all_gather(static_cast<long long>(owned)); }), rows_);
   const long lower = layouts.owners[static_cast<std::size_t>(comm_.rank())], total = layouts.total();
   std::string problem;
   const auto sized = [&](const NodeFields<Dim>& f) {
@@ -589,7 +591,7 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
     for (std::size_t k = 0; k < owned_slots.size() && problem.empty(); ++k)
       if (owned_slots[k] < 0) problem = fmt::format("owned node {} is on no slot", numbering.first + k);
   }
-  if (comm_.any(!problem.empty()))
+  if (waited.time([&] { return comm_.any(!problem.empty()); }))
     throw std::invalid_argument(fmt::format("ConsistentDrag ({}): {}", prefix_,
                                             problem.empty() ? "inconsistent input on another rank" : problem));
 
@@ -604,7 +606,7 @@ SolveStats ConsistentDrag<Dim>::solve(const BlockGrid<Dim>& grid, const Particle
   prepare_vectors(layouts);
   SolveStats stats;
   stats.exchange_s =
-      assemble(grid, soil, soil_drag, soil_nodes, water_nodes, dt, numbering, owned_slots, layouts, groups);
+      assemble(grid, soil, soil_drag, soil_nodes, water_nodes, dt, numbering, owned_slots, layouts, groups, wait);
   Petsc& p = *petsc_;
   SUITE_PETSC_CHECK(KSPSetOperators(p.ksp, p.matrix, p.matrix));
   stats.rows_s = seconds_since(assembly_start) - stats.exchange_s;

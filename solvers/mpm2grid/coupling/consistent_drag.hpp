@@ -66,6 +66,7 @@
 #include <vector>
 
 #include "core/mpi/comm.hpp"
+#include "solvers/mpm2grid/decomposition/wait_clock.hpp"
 #include "solvers/mpm2grid/grid/block_grid.hpp"
 #include "solvers/mpm2grid/particles/particles.hpp"
 
@@ -141,12 +142,14 @@ class ConsistentDrag {
   // (one per particle); their stencils must lie in `grid`. The node fields hold mass, momentum
   // and force (gravity included) for every slot of `grid`; on owned nodes they must be complete
   // (summed over ranks). groups: the soil particles' groups (the block holding each stencil's
-  // first node: touch_blocks, find_groups), found here when null. COLLECTIVE on the comm. Throws
-  // LibraryError naming the prefix and PETSc's reason when the Krylov solve diverges,
-  // std::invalid_argument on inconsistent sizes.
+  // first node: touch_blocks, find_groups), found here when null. wait: where given, the time
+  // blocked in this call's own collectives (the counts' gather, the input check, the rows sent
+  // to other ranks; not PETSc's, whose reductions it cannot see) is counted on it. COLLECTIVE on
+  // the comm. Throws LibraryError naming the prefix and PETSc's reason when the Krylov solve
+  // diverges, std::invalid_argument on inconsistent sizes.
   SolveStats solve(const BlockGrid<Dim>& grid, const Particles<Dim>& soil, const std::vector<double>& soil_drag,
                    NodeFields<Dim>& soil_nodes, NodeFields<Dim>& water_nodes, double dt, const NodeNumbering& numbering,
-                   const std::vector<int>* groups = nullptr);
+                   const std::vector<int>* groups = nullptr, WaitClock* wait = nullptr);
 
   const std::string& prefix() const { return prefix_; }
 
@@ -157,7 +160,7 @@ class ConsistentDrag {
   double assemble(const BlockGrid<Dim>& grid, const Particles<Dim>& soil, const std::vector<double>& soil_drag,
                   const NodeFields<Dim>& soil_nodes, const NodeFields<Dim>& water_nodes, double dt,
                   const NodeNumbering& numbering, const std::vector<long>& owned_slots, const Layouts& layouts,
-                  const std::vector<int>* groups);
+                  const std::vector<int>* groups, WaitClock* wait);
 
   struct Petsc;  // the KSP, the matrix (rebuilt every call: the pattern follows the particles),
                  // the vectors and the scatter (kept while every rank's counts stay the same)

@@ -426,8 +426,8 @@ void Simulation<Dim>::solve_grid(double dt) {
   // Owners number their coupled nodes; the ghost copies learn the owners' numbers.
   auto numbering = NodeNumbering::own_blocks(*comm_, soil_nodes_, water_nodes_, dd_->owned_blocks());
   dd_->copy_to_ghosts(numbering.global);
-  drag_stats_ =
-      consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering, &soil_schedule_.groups());
+  drag_stats_ = consistent_->solve(grid_, soil_, soil_drag_, soil_nodes_, water_nodes_, dt, numbering,
+                                   &soil_schedule_.groups(), &dd_->waited());
   free_water_velocities(dt);
 }
 
