@@ -22,7 +22,8 @@ the consistent drag's coupled nodes per step owned by a rank, mean and most over
 assembly's work per rank; empty without the consistent drag), drag_solved_nodes_rank_max: the
 most whose rows a rank held in the Krylov solve (decomposition.drag_rows), drag_rows_s_mean and
 _max, drag_exchange_s_mean and _max, drag_krylov_s_mean and _max: a rank's seconds computing its
-rows of the drag matrix, in PETSc's assembly (waiting for the others included) and in the Krylov
+rows of the drag matrix, in the assembly's exchange (the rows for other ranks, PETSc's assembly,
+the waiting for the others) and in the Krylov
 solves, mean and most over the ranks (all inside the grid solve phase). From run.json's
 per_rank block (over several ranks; the compute phases' own seconds, waits taken off, summed per
 rank):

@@ -99,8 +99,8 @@ def coupled_share(row):
     seconds = ""
     if row.get("drag_rows_s_max"):
         pair = lambda k: f"{float(row[f'drag_{k}_s_max']):.3g} / {float(row[f'drag_{k}_s_mean']):.3g} s"
-        seconds = (f" Its seconds, most / mean over the ranks: computing the rows {pair('rows')}, PETSc's "
-                   f"assembly (waits included) {pair('exchange')}, the Krylov solves {pair('krylov')}.")
+        seconds = (f" Its seconds, most / mean over the ranks: computing the rows {pair('rows')}, the assembly's "
+                   f"exchange (waits included) {pair('exchange')}, the Krylov solves {pair('krylov')}.")
     return (f" The drag solve's coupled nodes: {float(most):.0f} on the busiest rank against {float(mean):.0f} "
             f"on average ({float(most) / float(mean):.1f}x){rows}.{seconds}")
 
