@@ -46,11 +46,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 CASES = {"ex2": "Table 3.4 example 2, h = 0.025 m", "ex2fine": "example 2, h = 0.0125 m",
          "ex2consistent": "example 2, h = 0.025 m, consistent drag",
          "ex2balanced": "example 2, h = 0.025 m, consistent drag, the solve's rows in equal shares",
-         "ex2dry": "example 2, h = 0.025 m, consistent drag, the particle counts alone (the wet soil not balanced)",
+         "ex2owners": "example 2, h = 0.025 m, consistent drag, the owners' rows in the solve",
+         "ex2dry": "example 2, h = 0.025 m, consistent drag, the particle counts alone and the owners' rows",
          "ex2jacobi": "example 2, h = 0.025 m, consistent drag, point Jacobi (the preconditioner before SOR)",
          "3d": "two_species_3d, h = 5 mm"}
 # A case run at the largest rank count only: its one-rank run is another case's (the same run).
-BASELINE = {"ex2balanced": "ex2consistent", "ex2dry": "ex2consistent"}
+BASELINE = {"ex2balanced": "ex2consistent", "ex2owners": "ex2consistent", "ex2dry": "ex2consistent"}
 RUN = re.compile(r"^(?P<case>[a-z0-9]+)-r(?P<ranks>\d+)(t(?P<threads>\d+))?(-(?P<mode>equal|measured))?-(?P<repeat>\d+)$")
 COPY = re.compile(r"^(?P<case>[a-z0-9]+)-copy(?P<copy>\d+)$")
 HEAD = ["lease", "case", "kind", "mode", "repeat", "copy", "threads"] + COLUMNS

@@ -9,7 +9,7 @@
 #     MPM2GRID    the executable; SCENES_DIR solvers/mpm2grid/scenes; BENCH_DIR benchmarks/mpm2grid
 #     OUT_DIR     one folder per run (run.json, series.csv, summary.json, stderr; no HDF5)
 #   env: RANKS ("1 2 4 8 16"), REPEATS (2), COPIES (the node's cores: the ceiling's pinned copies),
-#        CASES ("ex2 ex2fine ex2consistent ex2balanced ex2dry ex2jacobi 3d"),
+#        CASES ("ex2 ex2fine ex2consistent ex2balanced ex2owners ex2dry ex2jacobi 3d"),
 #        BIND ("--bind-to core --map-by core"),
 #        HYBRID ("": none; e.g. "8x2 4x4 2x8"): ranks x threads per rank (OMP_NUM_THREADS), each
 #        rank bound to its own cores (--map-by slot:PE=T), its threads to one core each; run after
@@ -18,12 +18,12 @@
 # Cases (issue 28's table): ex2 = Table 3.4 example 2 at h = 0.025 m (433k particles, 300 steps,
 # every rank count, REPEATS times, the ceiling first: it also warms a fresh node's memory);
 # ex2fine = h = 0.0125 m (1.73M, 100 steps, 1 and the largest rank count, and its ceiling);
-# ex2consistent = h = 0.025 m with the consistent PETSc drag (60 steps; the wet soil balanced
-# beside the particle counts, the default since 2026-11-28); ex2balanced = the same with the drag
-# solve's rows in equal shares (decomposition.drag_rows: balanced), at the largest rank count
-# only (one rank is the same run as ex2consistent's); ex2dry = the same with the particle counts
-# alone (decomposition.balance_wet_soil: false, the default before), largest rank count only;
-# ex2jacobi = ex2consistent with
+# ex2consistent = h = 0.025 m with the consistent PETSc drag (60 steps; the defaults since
+# 2026-11-28: the wet soil balanced beside the particle counts, the solve's rows chosen by how
+# even the owners are); at the largest rank count only (one rank is the same run as
+# ex2consistent's): ex2balanced = the same with the rows in equal shares (decomposition.drag_rows:
+# balanced), ex2owners = with the owners' rows, ex2dry = the defaults before (the particle counts
+# alone, the owners' rows); ex2jacobi = ex2consistent with
 # the point Jacobi preconditioner of before 2026-11-28 (SOR since); 3d = benchmarks'
 # two_species_3d at h = 5 mm (338k, 80 steps). Runs are named CASE-rRANKS-REPEAT.
 # A run's length is its step count times the dt that a 5-step probe measures, so that every run
@@ -35,7 +35,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 bench=$3 out=$4
 ranks_list=${RANKS:-1 2 4 8 16} repeats=${REPEATS:-2} copies=${COPIES:-$(nproc)}
-cases=${CASES:-ex2 ex2fine ex2consistent ex2balanced ex2dry ex2jacobi 3d} bind=${BIND:---bind-to core --map-by core} hybrid=${HYBRID:-}
+cases=${CASES:-ex2 ex2fine ex2consistent ex2balanced ex2owners ex2dry ex2jacobi 3d} bind=${BIND:---bind-to core --map-by core} hybrid=${HYBRID:-}
 mkdir -p "$out"
 top=$(echo "$ranks_list" | tr ' ' '\n' | sort -n | tail -1)
 quiet=("time.output=1000 s" --log-level warn)
@@ -112,12 +112,14 @@ for c in $cases; do
     ex2consistent) args=("$ex2" "grid.spacing=0.025 m" drag=consistent) steps=60 reps=1 list="1 $top" copy=0;;
     ex2balanced) args=("$ex2" "grid.spacing=0.025 m" drag=consistent decomposition.drag_rows=balanced) steps=60 reps=1
       list=$top copy=0;;
-    ex2dry) args=("$ex2" "grid.spacing=0.025 m" drag=consistent decomposition.balance_wet_soil=false) steps=60 reps=1
+    ex2owners) args=("$ex2" "grid.spacing=0.025 m" drag=consistent decomposition.drag_rows=owners) steps=60 reps=1
       list=$top copy=0;;
+    ex2dry) args=("$ex2" "grid.spacing=0.025 m" drag=consistent decomposition.balance_wet_soil=false
+      decomposition.drag_rows=owners) steps=60 reps=1 list=$top copy=0;;
     ex2jacobi) args=("$ex2" "grid.spacing=0.025 m" drag=consistent "petsc_options=-drag_pc_type jacobi") steps=60
       reps=1 list="1 $top" copy=0;;
     3d) args=("$bench/two_species_3d.yaml" "grid.spacing=0.005 m") steps=80 reps=1 list="1 $top" copy=0;;
-    *) echo "unknown case $c (ex2 ex2fine ex2consistent ex2balanced ex2dry ex2jacobi 3d)" >&2; continue;;
+    *) echo "unknown case $c (ex2 ex2fine ex2consistent ex2balanced ex2owners ex2dry ex2jacobi 3d)" >&2; continue;;
   esac
   end=$(end_time "$c" "$steps" "${args[@]}") || continue
   series=$(awk -v e="$end" 'BEGIN { printf "%.6g", e / 4 }')

@@ -13,12 +13,12 @@
 #    over the run).
 #   benchmarks/mpm2grid/run_wet_soil.sh [MPM2GRID]     (about 10 min on 2 cores at the defaults)
 #   env: H (0.025 m), STEPS (60), RANKS ("2 16"), REPEATS (3), LONG_H (0.1 m), LONG_END (3 s),
-#        CONFIGS (WET:ROWS pairs, "true:owners false:owners true:balanced false:balanced"; the
-#        first is the default) and common.sh's MPM2GRID MPIEXEC OUT NICE KEEP_RUNS
+#        CONFIGS (WET:ROWS pairs, "true:auto true:owners false:owners true:balanced false:balanced";
+#        the first is the default) and common.sh's MPM2GRID MPIEXEC OUT NICE KEEP_RUNS
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 h=${H:-0.025 m} steps=${STEPS:-60} ranks_list=${RANKS:-2 16} repeats=${REPEATS:-3} long_h=${LONG_H:-0.1 m}
-long_end=${LONG_END:-3} configs=${CONFIGS:-true:owners false:owners true:balanced false:balanced}
+long_end=${LONG_END:-3} configs=${CONFIGS:-true:auto true:owners false:owners true:balanced false:balanced}
 scene=$scenes/table_3_4_example2.yaml
 common=(drag=consistent "time.output=1000 s" "time.series=1000 s")
 work_dir wet_soil

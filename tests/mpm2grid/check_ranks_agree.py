@@ -83,15 +83,15 @@ if second_ranks > 1:
 # nodes are coupled on both runs (both species' masses on a node, which round-off cannot bring to
 # zero), so the sums per step, averaged over the same steps, agree to the averages' round-off.
 # With the solve's rows in equal shares (decomposition.drag_rows: balanced) the shares of a step
-# differ by at most one node, so their averages do too; with the owners' rows (the default) the
-# solved nodes are the coupled ones.
+# differ by at most one node, so their averages do too; with the owners' rows the solved nodes
+# are the coupled ones; `auto` takes either, step by step (only the sums hold).
 counts = []
 for d in (one, two):
     with open(os.path.join(d, "run.json")) as f:
         r = json.load(f)
     with open(os.path.join(d, "effective_config.yaml")) as f:
-        balanced = re.search(r"^\s*drag_rows:\s*balanced\s*$", f.read(), re.M) is not None
-    counts.append((r.get("drag_coupled_nodes_per_rank"), r.get("drag_solved_nodes_per_rank"), balanced))
+        rows = re.search(r"^\s*drag_rows:\s*(\w+)\s*$", f.read(), re.M)
+    counts.append((r.get("drag_coupled_nodes_per_rank"), r.get("drag_solved_nodes_per_rank"), rows and rows.group(1)))
     # The drag's rows, PETSc's assembly and the Krylov solves are disjoint intervals inside each
     # rank's grid solve phase, on the same clock: their sum is at most the phase, per rank and so
     # in the mean.
@@ -111,10 +111,10 @@ if counts[0][0] is not None:
             f"{key} nodes per step: {c1['mean']} on one rank, {total} summed over {second_ranks}")
         print(f"{key} nodes per step: {c1['mean']:.1f} on one rank; on {second_ranks}: {c2['min']:.1f} to "
               f"{c2['max']:.1f} a rank, {total:.1f} in all")
-    (coupled, solved, balanced) = counts[1]
-    if balanced:
+    (coupled, solved, rows) = counts[1]
+    if rows == "balanced":
         assert solved["max"] - solved["min"] <= 1 + 1e-9, f"{two}/run.json: the solve's shares differ: {solved}"
-    else:
+    elif rows == "owners":
         assert solved == coupled, f"{two}/run.json: the owners' rows, yet solved nodes {solved}, coupled {coupled}"
 
 # The step's breakdown in run.json (solvers/mpm2grid/model/step_timers.hpp) accounts for the step:

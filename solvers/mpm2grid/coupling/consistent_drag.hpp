@@ -32,14 +32,15 @@
 // Which rank holds a row in the solve (DragRows): the coupled nodes gather where the water meets
 // the soil, in few of the particles' parts (over the first 60 steps of example 2 at h = 0.025 m
 // on 16 ranks one rank owns 507 of the 1,019), and every rank waits for the busiest at each
-// Krylov iteration's reductions. `owners` (the default) solves each row on the node's owner (no
-// traffic beyond the solve's own). `balanced` gives each rank an equal contiguous share of the
+// Krylov iteration's reductions. `owners` solves each row on the node's owner (no traffic
+// beyond the solve's own). `balanced` gives each rank an equal contiguous share of the
 // global numbering, whoever owns the nodes: the owners still assemble their nodes' rows (and
 // send those another rank holds) and hold their right-hand sides and velocities, which reach the
 // solve's layout and come back by one VecScatter (docs/mpm2grid.md, "Benchmarks", for what each
 // costs on 2 ranks; at 16 ranks it is unmeasured). The global numbering and so the
 // matrix are the same in both; the Krylov iterations differ by round-off (the reductions' order
 // follows the layout), and their number with a preconditioner that works on each rank's rows.
+// `automatic` (the scenes' default) chooses between the two at each call from the owned counts.
 // The other way to spread the rows, the nodes themselves over the ranks, is the partition's:
 // decomposition.balance_wet_soil (decomposition/partition.hpp).
 //
@@ -106,8 +107,10 @@ struct NodeNumbering {
                                   const std::vector<char>& owned_block);
 };
 
-// Where the solve's rows go: with the nodes' owners, or in equal shares over the ranks.
-enum class DragRows { owners, balanced };
+// Where the solve's rows go: with the nodes' owners, in equal shares over the ranks, or
+// (automatic) in equal shares where the busiest owner holds more than 1.2 times the mean coupled
+// nodes, else with the owners (consistent_drag.cpp, kUnevenOwners).
+enum class DragRows { owners, balanced, automatic };
 
 // What one solve did, over the Dim components.
 struct SolveStats {

@@ -69,8 +69,8 @@ struct SimulationSettings {
   SoilSettings soil;
   DragScheme drag = DragScheme::lumped;
   // With the consistent drag over several ranks: the Krylov solve's rows on the coupled nodes'
-  // owners, or in equal shares (coupling/consistent_drag.hpp).
-  DragRows drag_rows = DragRows::owners;
+  // owners, in equal shares, or either by how even the owners are (coupling/consistent_drag.hpp).
+  DragRows drag_rows = DragRows::automatic;
   // implicit_end: the elastic forces at the step's end, solved by Newton-Krylov over the
   // communicator (PETSc options prefix "implicit_"); with the lumped drag, without the mixture.
   ForceScheme forces = ForceScheme::explicit_start;

@@ -281,8 +281,8 @@ Scene<Dim> read_scene(const config::Config& cfg) {
   sim.decomposition.diffuse = dd.choice("repartition", {"diffuse", "fresh"}, "diffuse") == "diffuse";
   // Read only with the consistent drag, so that other scenes' effective_config.yaml lacks them.
   if (sim.drag == DragScheme::consistent) {
-    sim.drag_rows =
-        dd.choice("drag_rows", {"owners", "balanced"}, "owners") == "owners" ? DragRows::owners : DragRows::balanced;
+    const std::string rows = dd.choice("drag_rows", {"auto", "owners", "balanced"}, "auto");
+    sim.drag_rows = rows == "owners" ? DragRows::owners : rows == "balanced" ? DragRows::balanced : DragRows::automatic;
     sim.decomposition.balance_wet_soil = dd.get<bool>("balance_wet_soil", true);
   } else {
     for (const char* key : {"drag_rows", "balance_wet_soil"})
