@@ -55,14 +55,14 @@ struct ConsistentDrag<Dim>::Layouts {
   long solve_count(int rank) const {
     return solve[static_cast<std::size_t>(rank) + 1] - solve[static_cast<std::size_t>(rank)];
   }
+  // The rank whose solve share holds node g (ranks with empty shares are passed over).
+  int solve_rank(long g) const {  // solve[0] = 0 <= g < total
+    return static_cast<int>(std::upper_bound(solve.begin(), solve.end(), g) - solve.begin()) - 1;
+  }
   // The first and one past the last node of the solve's share holding node g.
   std::pair<long, long> solve_share(long g) const {
-    const auto after = std::upper_bound(solve.begin(), solve.end(), g);  // solve[0] = 0 <= g < total
-    return {*(after - 1), *after};
-  }
-  // The rank whose solve share holds node g (ranks with empty shares are passed over).
-  int solve_rank(long g) const {
-    return static_cast<int>(std::upper_bound(solve.begin(), solve.end(), g) - solve.begin()) - 1;
+    const auto r = static_cast<std::size_t>(solve_rank(g));
+    return {solve[r], solve[r + 1]};
   }
 };
 
