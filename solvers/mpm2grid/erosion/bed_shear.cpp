@@ -157,7 +157,7 @@ bool BedShear<Dim>::in_top_layer(const Particles<Dim>& soil, std::size_t p) cons
 }
 
 template <int Dim>
-double BedShear<Dim>::erode(Particles<Dim>& soil, double dt) const {
+double BedShear<Dim>::erode(Particles<Dim>& soil, double dt, std::vector<std::size_t>* detached) const {
   if (!erosion_.on) return 0;
   const double area = std::pow(h_, Dim - 1);  // a column's cross-section
   double taken = 0;
@@ -181,6 +181,7 @@ double BedShear<Dim>::erode(Particles<Dim>& soil, double dt) const {
       soil.eroded[p] = std::numeric_limits<double>::infinity();
       soil.F[p] = Mat<Dim>::Identity();
       soil.log_jp[p] = 0;
+      if (detached) detached->push_back(p);
     }
   }
   return taken;

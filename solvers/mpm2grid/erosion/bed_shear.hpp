@@ -104,8 +104,9 @@ class BedShear {
   // (nothing without excess-stress erosion). Right after measure(), on the same particles. Returns
   // the volume the law took over the step, m^3 (m^2 per metre in 2D): the sum over the columns with
   // a top layer under an eroding flow of dt kd (tau - tau_c) secant h^(Dim-1), the same on every
-  // rank (the columns are).
-  double erode(Particles<Dim>& soil, double dt) const;
+  // rank (the columns are). `detached`, where given, gets the indices of the particles this call
+  // detached (their F_E set to I), in increasing order.
+  double erode(Particles<Dim>& soil, double dt, std::vector<std::size_t>* detached = nullptr) const;
   // The friction on the water particles of the wet columns' flows (measure()'s `free` as there),
   // over dt.
   void brake(Particles<Dim>& water, double dt, const std::vector<char>* free = nullptr) const;

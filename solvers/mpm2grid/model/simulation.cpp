@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -116,8 +115,8 @@ void Simulation<Dim>::build_grid() {
     (apply_order(along, order, threads), ...);
   };
   reorder(water_, water_schedule_.groups());
-  known_stress_.resize(soil_.size());  // (none known for a particle that has none yet)
-  reorder(soil_, soil_schedule_.groups(), known_stress_);
+  size_stresses();
+  reorder(soil_, soil_schedule_.groups(), soil_tau_, stress_known_);
   if (dd_) {
     timed.emplace(times_, StepPhase::halo_plan, wait_clock());
     dd_->prepare(grid_);  // adds the halo blocks after these
@@ -199,21 +198,15 @@ void Simulation<Dim>::stresses() {
   const std::size_t n_water = water_.size(), n_soil = soil_.size();
 #pragma omp parallel for schedule(static) num_threads(s_.threads) if (s_.threads > 1)
   for (std::size_t p = 0; p < n_water; ++p) water_pressure_[p] = s_.water.eos.pressure(water_.J[p]);
-  soil_tau_.resize(soil_.size());
+  size_stresses();
   soil_drag_.resize(soil_.size());
   solid_volume_.resize(s_.buoyancy ? soil_.size() : 0);
   const double c_e = s_.soil.drag_coefficient(s_.water.density), solid = 1 - s_.soil.porosity;
   const bool implicit = s_.forces == ForceScheme::implicit_end;
 #pragma omp parallel for schedule(dynamic, kPart) num_threads(s_.threads) if (s_.threads > 1)
   for (std::size_t p = 0; p < n_soil; ++p) {
-    // The stress is a function of F_E alone: a known one for a bit-for-bit equal F_E is the
-    // same value, not computed again. (Particles removed or moved since only miss it.)
     // (The implicit forces take the stress at the step's end: none is needed here.)
-    if (!implicit) {
-      const bool known = p < known_stress_.size() && known_stress_[p].known &&
-                         std::memcmp(known_stress_[p].F.data(), soil_.F[p].data(), sizeof(Mat<Dim>)) == 0;
-      soil_tau_[p] = known ? known_stress_[p].tau : s_.soil.material.template kirchhoff<Dim>(soil_.F[p]);
-    }
+    if (!implicit && !stress_known_[p]) soil_tau_[p] = s_.soil.material.template kirchhoff<Dim>(soil_.F[p]);
     const double volume = soil_.volume0[p] * soil_.F[p].determinant();
     soil_drag_[p] = c_e * volume;
     if (s_.buoyancy) solid_volume_[p] = solid * volume;
@@ -345,7 +338,10 @@ void Simulation<Dim>::step(double dt) {
     if (!bed_shear_) return;
     auto timed = phase(StepPhase::bed_shear);
     bed_shear_->measure(water_, soil_, dd_ ? &dd_->comm() : nullptr, free);
-    outflow_.law_eroded_volume += bed_shear_->erode(soil_, dt);
+    detached_.clear();
+    outflow_.law_eroded_volume += bed_shear_->erode(soil_, dt, &detached_);
+    for (const std::size_t p : detached_)  // their F_E is now I
+      if (p < stress_known_.size()) stress_known_[p] = 0;
   };
   if (!s_.free_water_field) bed_shear(nullptr);
   build_grid();
@@ -402,8 +398,16 @@ void Simulation<Dim>::step(double dt) {
 // After a migration: the known stresses of the soil particles that stayed, none for the received.
 template <int Dim>
 void Simulation<Dim>::keep_known_stresses() {
-  dd_->drop_sent(1, known_stress_);
-  known_stress_.resize(soil_.size());
+  dd_->drop_sent(1, soil_tau_);
+  dd_->drop_sent(1, stress_known_);
+  size_stresses();
+}
+
+// An entry per soil particle in soil_tau_ and stress_known_: none known for those that had none.
+template <int Dim>
+void Simulation<Dim>::size_stresses() {
+  soil_tau_.resize(soil_.size());
+  stress_known_.resize(soil_.size(), 0);
 }
 
 // The drag-coupled grid velocities on this rank's nodes (on ghost nodes too, from partial sums:
@@ -740,7 +744,7 @@ void Simulation<Dim>::update_particles(double dt) {
   timed.emplace(times_, StepPhase::g2p_soil, wait_clock());
   wall_water_fill();
   soil_velocities();  // leaves the sums sum_i w_ip m_w,i / I_i in `saturation`
-  known_stress_.resize(soil_.size());
+  size_stresses();
   if (dd_) record_homes(soil_);
   // (With threads, parts of kPart particles: whole batches of the return mapping.)
   for_parts(soil_.size(), [&](ParticleRun run) { update_soil(dt, run); });
@@ -781,12 +785,12 @@ SUITE_INLINE_CALLS void Simulation<Dim>::update_soil(double dt, ParticleRun run)
       const std::size_t p = first + static_cast<std::size_t>(n);
       soil_.F[p] = r[n].F;
       soil_.log_jp[p] = r[n].log_jp;
-      known_stress_[p].known = r[n].has_stress;
-      if (r[n].has_stress) known_stress_[p].F = r[n].F, known_stress_[p].tau = r[n].stress;
+      stress_known_[p] = r[n].has_stress;
+      if (r[n].has_stress) soil_tau_[p] = r[n].stress;
       if (s_.erosion.on && bed_shear_->suspended(soil_, p)) {
         soil_.F[p] = Mat<Dim>::Identity();
         soil_.log_jp[p] = 0;
-        known_stress_[p].known = false;
+        stress_known_[p] = 0;
         bed_shear_->settle(soil_, p, dt);
       }
       s_.walls.clamp(soil_.x[p]);
@@ -821,10 +825,10 @@ void Simulation<Dim>::remove_outflow() {
   };
   if (dd_) {
     take_out(water_, step.water_mass, left_home_[0]);
-    take_out(soil_, step.soil_mass, left_home_[1], known_stress_);
+    take_out(soil_, step.soil_mass, left_home_[1], soil_tau_, stress_known_);
   } else {
     take_out(water_, step.water_mass);
-    take_out(soil_, step.soil_mass, known_stress_);
+    take_out(soil_, step.soil_mass, soil_tau_, stress_known_);
   }
   if (dd_) {  // the record is the same on every rank
     std::array<double, 3 + Dim> all{};

@@ -252,6 +252,9 @@ class MpmRun {
         }
       }
     }
+    if (sim_.detached() > 0)
+      log_.debug("step {} (t = {} s): the erosion detached {} soil particles from the bed on rank {}", sim_.steps(),
+                 sim_.time(), sim_.detached(), comm_.rank());
     ++p_.limiters[limit.limiter];
     p_.dt_cap *= 1.25;  // infinity stays infinity
     drag_iterations_ = std::max(drag_iterations_, static_cast<long long>(sim_.drag_stats().iterations));
