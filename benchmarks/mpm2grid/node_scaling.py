@@ -253,7 +253,7 @@ def hybrid_table(runs, hybrid, t1):
 
 
 def chart(curves, png):
-    """Left: the speedup of example 2 at h = 0.025 m per lease, with the node's ceilings at 16 ranks.
+    """Left: the speedup of example 2 at h = 0.025 m per lease, with the node's ceilings at the most ranks.
     Right: its step on the faster run of each rank count, in core-milliseconds (ranks x the mean
     rank's seconds), split into compute, waiting in MPI, the communication phases' own work and
     balancing: flat bars would be perfect scaling."""
@@ -280,7 +280,7 @@ def chart(curves, png):
     ax.set_yscale("log", base=2)
     ax.set_xlabel("ranks (one per core)")
     ax.set_ylabel("speedup of the step phase over one rank")
-    ax.set_title("mpm2grid strong scaling on one 16-core node")
+    ax.set_title(f"mpm2grid strong scaling on one node, 1 to {top} ranks")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
     breakdowns = [(k, v) for k, v in curves.items() if k.endswith("breakdown")]

@@ -31,7 +31,8 @@ done
   echo "Written by \`benchmarks/mpm2grid/run_all.sh\` from the tables each driver writes beside its CSV"
   echo "and PNG (\`<name>.md\`, \`<name>.csv\`, \`<name>.png\`); rerun one driver and then this script with"
   echo "ONLY=none to refresh this file. Timings are medians over repeats run in turn."
-  # node_scaling needs a many-core node: run_node_scaling.sh there, node_scaling.py anywhere;
+  # node_scaling needs a many-core node: run_node_scaling.sh there, node_scaling.py anywhere
+  # (node_scaling_vm: the same at RANKS="1 2" on the 2-core development VM, its header has how);
   # comm_model is comm_model.py on node_scaling.csv and message_counts.csv; implicit_forces_h0.25 is
   # DAM_SPACING=0.25 REPEATS=1 NAME=implicit_forces_h0.25 run_implicit_forces.sh (about 8 min);
   # implicit_forces_closure{,_h0.25} are SCENES=example2_closure NAME=... run_implicit_forces.sh
@@ -39,7 +40,7 @@ done
   # dam_convergence_bed_shear is run_dam_convergence.sh with the NAME and SCENE_ARGS its header gives;
   # threads_h0.025 is H="0.025 m" REPEATS=3 NAME=threads_h0.025 run_threads.sh (about 8 min),
   # threads_free_water MPM_ARGS=free_water_field=true CONFIGS="1x1 1x2" REPEATS=4 NAME=... (4 min).
-  for b in particle_step table_3_4_scaling message_counts rebalance drag_solver wet_soil node_scaling comm_model threads threads_h0.025 \
+  for b in particle_step table_3_4_scaling message_counts rebalance drag_solver wet_soil node_scaling node_scaling_vm comm_model threads threads_h0.025 \
     threads_free_water martin_moyce dam_convergence \
     dam_convergence_bed_shear drag_stability soil_stiffness granular_collapse implicit_forces implicit_forces_h0.25 \
     implicit_forces_closure implicit_forces_closure_h0.25; do

@@ -17,7 +17,8 @@
 #
 # Cases (issue 28's table): ex2 = Table 3.4 example 2 at h = 0.025 m (433k particles, 300 steps,
 # every rank count, REPEATS times, the ceiling first: it also warms a fresh node's memory);
-# ex2fine = h = 0.0125 m (1.73M, 100 steps, 1 and the largest rank count, and its ceiling);
+# ex2fine = h = 0.0125 m (1.73M, 100 steps, 1 and the largest rank count, once, and its ceiling);
+# the other cases REPEATS times (their runs are short, a second or two at 16 ranks):
 # ex2consistent = h = 0.025 m with the consistent PETSc drag (60 steps; the defaults since
 # 2026-11-28: the wet soil balanced beside the particle counts, the solve's rows chosen by how
 # even the owners are); at the largest rank count only (one rank is the same run as
@@ -109,16 +110,16 @@ for c in $cases; do
   case $c in
     ex2) args=("$ex2" "grid.spacing=0.025 m") steps=300 reps=$repeats list=$ranks_list copy=1;;
     ex2fine) args=("$ex2" "grid.spacing=0.0125 m") steps=100 reps=1 list="1 $top" copy=1;;
-    ex2consistent) args=("$ex2" "grid.spacing=0.025 m" drag=consistent) steps=60 reps=1 list="1 $top" copy=0;;
-    ex2balanced) args=("$ex2" "grid.spacing=0.025 m" drag=consistent decomposition.drag_rows=balanced) steps=60 reps=1
+    ex2consistent) args=("$ex2" "grid.spacing=0.025 m" drag=consistent) steps=60 reps=$repeats list="1 $top" copy=0;;
+    ex2balanced) args=("$ex2" "grid.spacing=0.025 m" drag=consistent decomposition.drag_rows=balanced) steps=60 reps=$repeats
       list=$top copy=0;;
-    ex2owners) args=("$ex2" "grid.spacing=0.025 m" drag=consistent decomposition.drag_rows=owners) steps=60 reps=1
+    ex2owners) args=("$ex2" "grid.spacing=0.025 m" drag=consistent decomposition.drag_rows=owners) steps=60 reps=$repeats
       list=$top copy=0;;
     ex2dry) args=("$ex2" "grid.spacing=0.025 m" drag=consistent decomposition.balance_wet_soil=false
-      decomposition.drag_rows=owners) steps=60 reps=1 list=$top copy=0;;
+      decomposition.drag_rows=owners) steps=60 reps=$repeats list=$top copy=0;;
     ex2jacobi) args=("$ex2" "grid.spacing=0.025 m" drag=consistent "petsc_options=-drag_pc_type jacobi") steps=60
-      reps=1 list="1 $top" copy=0;;
-    3d) args=("$bench/two_species_3d.yaml" "grid.spacing=0.005 m") steps=80 reps=1 list="1 $top" copy=0;;
+      reps=$repeats list="1 $top" copy=0;;
+    3d) args=("$bench/two_species_3d.yaml" "grid.spacing=0.005 m") steps=80 reps=$repeats list="1 $top" copy=0;;
     *) echo "unknown case $c (ex2 ex2fine ex2consistent ex2balanced ex2owners ex2dry ex2jacobi 3d)" >&2; continue;;
   esac
   end=$(end_time "$c" "$steps" "${args[@]}") || continue
