@@ -20,6 +20,21 @@ inline double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+// A moment on both clocks, and the seconds since on each: the CPU span is read inside the wall
+// span (taken after the wall's start, before its end), so it never exceeds it by the reads.
+struct ClockMark {
+  std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
+  double cpu = thread_cpu_seconds();
+
+  struct Spans {
+    double wall, cpu;
+  };
+  Spans since() const {
+    const double cpu_span = thread_cpu_seconds() - cpu;
+    return {std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count(), cpu_span};
+  }
+};
+
 struct WaitClock {
   double seconds = 0;  // wall
   double cpu = 0;      // the calling thread's CPU over the same calls (MPI's polling)
@@ -29,11 +44,10 @@ struct WaitClock {
   decltype(auto) time(F&& f) {
     struct Add {
       WaitClock& clock;
-      std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-      double cpu_start = thread_cpu_seconds();
-      ~Add() {  // the CPU span inside the wall span
-        clock.cpu += thread_cpu_seconds() - cpu_start;
-        clock.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ClockMark start{};
+      ~Add() {
+        const auto spans = start.since();
+        clock.seconds += spans.wall, clock.cpu += spans.cpu;
       }
     } add{*this};
     return std::forward<F>(f)();

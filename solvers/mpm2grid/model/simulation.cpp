@@ -198,7 +198,6 @@ void Simulation<Dim>::stresses() {
   const std::size_t n_water = water_.size(), n_soil = soil_.size();
 #pragma omp parallel for schedule(static) num_threads(s_.threads) if (s_.threads > 1)
   for (std::size_t p = 0; p < n_water; ++p) water_pressure_[p] = s_.water.eos.pressure(water_.J[p]);
-  size_stresses();
   soil_drag_.resize(soil_.size());
   solid_volume_.resize(s_.buoyancy ? soil_.size() : 0);
   const double c_e = s_.soil.drag_coefficient(s_.water.density), solid = 1 - s_.soil.porosity;
@@ -744,7 +743,6 @@ void Simulation<Dim>::update_particles(double dt) {
   timed.emplace(times_, StepPhase::g2p_soil, wait_clock());
   wall_water_fill();
   soil_velocities();  // leaves the sums sum_i w_ip m_w,i / I_i in `saturation`
-  size_stresses();
   if (dd_) record_homes(soil_);
   // (With threads, parts of kPart particles: whole batches of the return mapping.)
   for_parts(soil_.size(), [&](ParticleRun run) { update_soil(dt, run); });

@@ -10,7 +10,6 @@
 // the thread was off its core (another process, a virtual machine's host): where the slowest
 // rank of a phase spent its extra time off its core, the partition did not give it more work.
 #include <array>
-#include <chrono>
 #include <cstddef>
 
 #include "solvers/mpm2grid/decomposition/wait_clock.hpp"
@@ -57,12 +56,11 @@ class StepPhaseScope {
         phase_(static_cast<std::size_t>(phase)),
         wait_(wait),
         wait_start_(wait ? wait->seconds : 0.0),
-        wait_cpu_start_(wait ? wait->cpu : 0.0),
-        start_(std::chrono::steady_clock::now()),
-        cpu_start_(thread_cpu_seconds()) {}
-  ~StepPhaseScope() {  // the CPU span inside the wall span
-    double cpu = thread_cpu_seconds() - cpu_start_;
-    times_.seconds[phase_] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        wait_cpu_start_(wait ? wait->cpu : 0.0) {}
+  ~StepPhaseScope() {
+    const auto spans = start_.since();
+    double cpu = spans.cpu;
+    times_.seconds[phase_] += spans.wall;
     if (wait_) {
       times_.waited[phase_] += wait_->seconds - wait_start_;
       cpu -= wait_->cpu - wait_cpu_start_;
@@ -78,8 +76,7 @@ class StepPhaseScope {
   const WaitClock* wait_;
   double wait_start_;
   double wait_cpu_start_;
-  std::chrono::steady_clock::time_point start_;
-  double cpu_start_;
+  ClockMark start_;
 };
 
 }  // namespace suite::mpm2grid
